@@ -1,1 +1,16 @@
-pub fn placeholder() {}
+//! Jellyfish animated by physical simulation, after Rudolf & Mould, "An Interactive Fluid
+//! Model of Jellyfish for Animation" (2009).
+//!
+//! Layers, each depending only on those below it:
+//! - [`species`]: parameters, presets, validation, RON.
+//! - [`sim`]: the 2D slice: fluid grid, spring-mass bell, immersed-boundary coupling,
+//!   muscles, and [`SliceSim`] that steps them together.
+//! - [`shape`]: slice to 3D surface buffers (umbrella, tentacles, variation).
+//! - `plugin` (feature `bevy`): the ECS plugin.
+
+pub mod shape;
+pub mod sim;
+pub mod species;
+
+pub use sim::{SliceSim, SliceView};
+pub use species::{Species, SpeciesError};

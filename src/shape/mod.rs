@@ -1,0 +1,1 @@
+//! Slice to 3D surface (paper sections 3.4–3.5).

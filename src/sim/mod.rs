@@ -1,0 +1,24 @@
+//! The 2D slice simulation (paper sections 3.2–3.3).
+
+pub mod body;
+
+use glam::Vec2;
+
+/// A read-only view of one slice, as the renderer needs it.
+///
+/// Frame: the slice plane, x across the bell, y along its axis with the apex towards +y
+/// at rest. Metres.
+#[derive(Clone, Copy, Debug)]
+pub struct SliceView<'a> {
+    /// Subumbrellar surface points, from the left margin over the apex to the right margin.
+    /// An odd count: point `i` and point `len - 1 - i` are an opposite pair, the middle one
+    /// is the apex.
+    pub bell: &'a [Vec2],
+    /// The same points at rest (uncontracted), for measuring contraction per pair.
+    pub rest_bell: &'a [Vec2],
+    /// Left and right tentacle chains; each starts at its margin point (`bell[0]`, resp.
+    /// `bell[len-1]`) and hangs away from the bell.
+    pub tentacles: [&'a [Vec2]; 2],
+}
+
+pub struct SliceSim;

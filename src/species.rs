@@ -1,0 +1,482 @@
+//! Species: every parameter of a jellyfish kind, in SI units, with validation.
+//!
+//! The defaults of [`Species::aurelia`] are the paper's Fig. 12 (Rudolf & Mould 2009),
+//! read in SI units as DESIGN.md section 3 explains. Everything else a simulation or a
+//! renderer needs lives here too, so that one RON file describes one species.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// A jellyfish species: physical, muscular and visual parameters.
+///
+/// Lengths in metres, moduli in pascals, frequencies in hertz. Parameters quoted from the
+/// paper say so; the rest are choices of ours, each explained where it is used.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[serde(default)]
+pub struct Species {
+    /// Display name.
+    pub name: String,
+
+    // --- Water (DESIGN.md section 3: the SI reading of the paper's table) ---
+    /// Fluid cells per side of the square slice domain (paper: 100).
+    pub grid_resolution: u32,
+    /// Dynamic viscosity of the water, Pa·s (sea water: 1.304e-3).
+    pub viscosity: f32,
+    /// Density of the water, kg/m³ (sea water: 1025).
+    pub density: f32,
+    /// Side of the square fluid domain in bell diameters (paper: 10).
+    pub domain_diameters: f32,
+
+    // --- Bell geometry (paper Fig. 12) ---
+    /// Bell diameter at rest, m (paper: 40 mm).
+    pub diameter: f32,
+    /// Bell height from aperture to apex at rest, m (paper: 28 mm).
+    pub height: f32,
+    /// Mesoglea thickness at the apex, m (paper: ϑ = 4 mm).
+    pub thickness: f32,
+    /// Mesoglea thickness at the margin as a fraction of `thickness`.
+    pub margin_thickness_ratio: f32,
+
+    // --- Elasticity ---
+    /// Hookean modulus of the bell mesoglea, Pa (paper: λ = 1186 Pa).
+    pub elastic_modulus: f32,
+    /// Bending stiffness of the angular springs per unit depth, N·m/rad.
+    pub angular_stiffness: f32,
+    /// Modulus of the muscle fibres, Pa (paper, after Megill: 400 kPa).
+    pub muscle_modulus: f32,
+    /// Cross-section of the muscle band as a fraction of the wall thickness.
+    pub muscle_cross_section: f32,
+
+    // --- Muscles (paper section 3.3) ---
+    /// Contractions per second, Hz (paper: 0.7).
+    pub contraction_frequency: f32,
+    /// Muscle rest length at full contraction as a fraction of rest (paper: 0.56).
+    pub contraction_ratio: f32,
+    /// Fraction of a cycle spent contracting; the rest is re-expansion.
+    pub contraction_duty: f32,
+    /// 0: all muscle springs re-expand in unison; 1: springs nearer the aperture
+    /// re-expand later and more slowly (the paper's staggered expansion).
+    pub expansion_stagger: f32,
+
+    // --- Tentacles ---
+    /// Tentacles around the 3D aperture.
+    pub tentacle_count: u32,
+    /// Tentacle length at rest, m.
+    pub tentacle_length: f32,
+    /// Cross-section of a tentacle spring as a fraction of a bell spring (paper: 1/100).
+    pub tentacle_cross_section: f32,
+    /// Rendered tentacle radius, m.
+    pub tentacle_radius: f32,
+
+    // --- Surface variation (paper section 3.5, Fig. 9) ---
+    /// Structural variation amplitude as a fraction of `thickness` (paper: 0.375).
+    pub structural_scale: f32,
+    /// Lobes around the bell for the structural variation.
+    pub structural_frequency: f32,
+    /// Use `|sin(f·σ)|` instead of `sin(f·σ)` for the structural variation.
+    pub structural_abs: bool,
+    /// Compression ripple amplitude at full contraction as a fraction of `thickness`
+    /// (paper: 1.51 − 1.36 = 0.15).
+    pub compression_scale: f32,
+    /// Ripples around the bell for the compression variation (paper Fig. 3: 8).
+    pub compression_frequency: f32,
+    /// Unstructured (Perlin) variation amplitude as a fraction of `thickness` (paper: 2.25).
+    pub unstructured_scale: f32,
+    /// Noise frequency along the latitude (apex to margin) (paper: 2).
+    pub noise_frequency_lat: f32,
+    /// Noise frequency along the longitude (around the axis) (paper: 8).
+    pub noise_frequency_lon: f32,
+    /// Noise frequency in time, 1/s (paper: 0.01).
+    pub noise_frequency_time: f32,
+
+    // --- Rendering resolution ---
+    /// Rings of the umbrella mesh from apex to margin, per surface.
+    pub mesh_rings: u32,
+    /// Segments around the axis.
+    pub mesh_segments: u32,
+    /// Sides of a tentacle tube.
+    pub tentacle_sides: u32,
+
+    // --- Looks ---
+    /// Bell colour, linear RGBA (alpha is the translucency).
+    pub bell_color: [f32; 4],
+    /// Emitted light, linear RGB.
+    pub glow_color: [f32; 3],
+    /// Glow strength multiplier.
+    pub glow: f32,
+}
+
+impl Default for Species {
+    fn default() -> Self {
+        Self::aurelia()
+    }
+}
+
+impl Species {
+    /// The moon jelly of the paper's Fig. 12, in SI units.
+    pub fn aurelia() -> Self {
+        Self {
+            name: "Aurelia".into(),
+            grid_resolution: 100,
+            viscosity: 1.304e-3,
+            density: 1025.0,
+            domain_diameters: 10.0,
+            diameter: 0.040,
+            height: 0.028,
+            thickness: 0.004,
+            margin_thickness_ratio: 0.3,
+            elastic_modulus: 1186.0,
+            angular_stiffness: 2.0e-3,
+            muscle_modulus: 400.0e3,
+            muscle_cross_section: 0.01,
+            contraction_frequency: 0.7,
+            contraction_ratio: 0.56,
+            contraction_duty: 0.35,
+            expansion_stagger: 1.0,
+            tentacle_count: 16,
+            tentacle_length: 0.03,
+            tentacle_cross_section: 0.01,
+            tentacle_radius: 0.0004,
+            structural_scale: 0.375,
+            structural_frequency: 8.0,
+            structural_abs: false,
+            compression_scale: 0.15,
+            compression_frequency: 8.0,
+            unstructured_scale: 2.25,
+            noise_frequency_lat: 2.0,
+            noise_frequency_lon: 8.0,
+            noise_frequency_time: 0.01,
+            mesh_rings: 24,
+            mesh_segments: 48,
+            tentacle_sides: 5,
+            bell_color: [0.75, 0.85, 1.0, 0.35],
+            glow_color: [0.35, 0.55, 1.0],
+            glow: 0.6,
+        }
+    }
+
+    /// Fluid cell size, m.
+    pub fn cell_size(&self) -> f32 {
+        self.domain_size() / self.grid_resolution as f32
+    }
+
+    /// Side of the square fluid domain, m.
+    pub fn domain_size(&self) -> f32 {
+        self.domain_diameters * self.diameter
+    }
+
+    /// Kinematic viscosity, m²/s.
+    pub fn kinematic_viscosity(&self) -> f32 {
+        self.viscosity / self.density
+    }
+
+    /// Contraction period, s.
+    pub fn period(&self) -> f32 {
+        1.0 / self.contraction_frequency
+    }
+
+    /// Parses a species from RON text, then validates it.
+    pub fn from_ron(text: &str) -> Result<Self, SpeciesError> {
+        let species: Species =
+            ron::from_str(text).map_err(|e| SpeciesError::Parse(e.to_string()))?;
+        species.validate()?;
+        Ok(species)
+    }
+
+    /// Writes the species as pretty RON.
+    pub fn to_ron(&self) -> Result<String, SpeciesError> {
+        ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
+            .map_err(|e| SpeciesError::Parse(e.to_string()))
+    }
+
+    /// Checks every parameter; the error names the first bad field and why.
+    pub fn validate(&self) -> Result<(), SpeciesError> {
+        let c = Checker;
+        let g = self.grid_resolution;
+        if !(16..=512).contains(&g) {
+            return Err(SpeciesError::invalid(
+                "grid_resolution",
+                format!("must be in 16..=512, got {g}"),
+            ));
+        }
+        c.positive("viscosity", self.viscosity, true)?;
+        c.positive("density", self.density, false)?;
+        c.range("domain_diameters", self.domain_diameters, 3.0, 40.0)?;
+        c.positive("diameter", self.diameter, false)?;
+        c.positive("height", self.height, false)?;
+        c.positive("thickness", self.thickness, false)?;
+        if self.height > 2.0 * self.diameter {
+            return Err(SpeciesError::invalid(
+                "height",
+                format!(
+                    "must be at most twice the diameter ({} m), got {} m",
+                    2.0 * self.diameter,
+                    self.height
+                ),
+            ));
+        }
+        if self.thickness > 0.5 * self.diameter.min(2.0 * self.height) {
+            return Err(SpeciesError::invalid(
+                "thickness",
+                format!("{} m is too thick for a bell this size", self.thickness),
+            ));
+        }
+        c.range(
+            "margin_thickness_ratio",
+            self.margin_thickness_ratio,
+            0.05,
+            1.0,
+        )?;
+        c.positive("elastic_modulus", self.elastic_modulus, false)?;
+        c.positive("angular_stiffness", self.angular_stiffness, true)?;
+        c.positive("muscle_modulus", self.muscle_modulus, false)?;
+        c.range("muscle_cross_section", self.muscle_cross_section, 1e-4, 1.0)?;
+        c.positive("contraction_frequency", self.contraction_frequency, false)?;
+        c.range(
+            "contraction_frequency",
+            self.contraction_frequency,
+            0.0,
+            10.0,
+        )?;
+        c.range("contraction_ratio", self.contraction_ratio, 0.2, 1.0)?;
+        c.range("contraction_duty", self.contraction_duty, 0.05, 0.9)?;
+        c.range("expansion_stagger", self.expansion_stagger, 0.0, 1.0)?;
+        if self.tentacle_count > 256 {
+            return Err(SpeciesError::invalid(
+                "tentacle_count",
+                format!("must be at most 256, got {}", self.tentacle_count),
+            ));
+        }
+        c.positive("tentacle_length", self.tentacle_length, true)?;
+        if self.tentacle_length > 20.0 * self.diameter {
+            return Err(SpeciesError::invalid(
+                "tentacle_length",
+                "must be at most 20 bell diameters".to_string(),
+            ));
+        }
+        c.range(
+            "tentacle_cross_section",
+            self.tentacle_cross_section,
+            1e-4,
+            1.0,
+        )?;
+        c.positive("tentacle_radius", self.tentacle_radius, false)?;
+        c.positive("structural_scale", self.structural_scale, true)?;
+        c.positive("structural_frequency", self.structural_frequency, true)?;
+        c.positive("compression_scale", self.compression_scale, true)?;
+        c.positive("compression_frequency", self.compression_frequency, true)?;
+        c.positive("unstructured_scale", self.unstructured_scale, true)?;
+        c.positive("noise_frequency_lat", self.noise_frequency_lat, true)?;
+        c.positive("noise_frequency_lon", self.noise_frequency_lon, true)?;
+        c.positive("noise_frequency_time", self.noise_frequency_time, true)?;
+        for (field, value, lo, hi) in [
+            ("mesh_rings", self.mesh_rings, 2, 256),
+            ("mesh_segments", self.mesh_segments, 3, 512),
+            ("tentacle_sides", self.tentacle_sides, 3, 32),
+        ] {
+            if !(lo..=hi).contains(&value) {
+                return Err(SpeciesError::invalid(
+                    field,
+                    format!("must be in {lo}..={hi}, got {value}"),
+                ));
+            }
+        }
+        for (i, v) in self.bell_color.iter().enumerate() {
+            c.range(
+                [
+                    "bell_color[0]",
+                    "bell_color[1]",
+                    "bell_color[2]",
+                    "bell_color[3]",
+                ][i],
+                *v,
+                0.0,
+                1.0,
+            )?;
+        }
+        for (i, v) in self.glow_color.iter().enumerate() {
+            c.positive(
+                ["glow_color[0]", "glow_color[1]", "glow_color[2]"][i],
+                *v,
+                true,
+            )?;
+        }
+        c.positive("glow", self.glow, true)?;
+        Ok(())
+    }
+}
+
+/// Why a species (or a simulation built from one) was refused.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SpeciesError {
+    /// A parameter is out of range; `field` is its name in [`Species`].
+    #[error("species field `{field}`: {reason}")]
+    Invalid { field: &'static str, reason: String },
+    /// The RON text could not be read.
+    #[error("species file: {0}")]
+    Parse(String),
+}
+
+impl SpeciesError {
+    pub fn invalid(field: &'static str, reason: impl Into<String>) -> Self {
+        Self::Invalid {
+            field,
+            reason: reason.into(),
+        }
+    }
+
+    /// The offending field, if the error is about one.
+    pub fn field(&self) -> Option<&'static str> {
+        match self {
+            Self::Invalid { field, .. } => Some(field),
+            Self::Parse(_) => None,
+        }
+    }
+}
+
+/// Small helpers so each check reads as one line.
+struct Checker;
+
+impl Checker {
+    fn finite(&self, field: &'static str, v: f32) -> Result<(), SpeciesError> {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(SpeciesError::invalid(
+                field,
+                format!("must be finite, got {v}"),
+            ))
+        }
+    }
+
+    fn positive(&self, field: &'static str, v: f32, zero_ok: bool) -> Result<(), SpeciesError> {
+        self.finite(field, v)?;
+        match (zero_ok, v) {
+            (true, v) if v < 0.0 => Err(SpeciesError::invalid(
+                field,
+                format!("must not be negative, got {v}"),
+            )),
+            (false, v) if v <= 0.0 => Err(SpeciesError::invalid(
+                field,
+                format!("must be greater than zero, got {v}"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    fn range(&self, field: &'static str, v: f32, lo: f32, hi: f32) -> Result<(), SpeciesError> {
+        self.finite(field, v)?;
+        if v < lo || v > hi {
+            return Err(SpeciesError::invalid(
+                field,
+                format!("must be in [{lo}, {hi}], got {v}"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Species {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} ({:.0} mm bell, {} Hz)",
+            self.name,
+            self.diameter * 1000.0,
+            self.contraction_frequency
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn aurelia_is_valid_and_matches_the_paper() {
+        let s = Species::aurelia();
+        s.validate().unwrap();
+        assert_eq!(s.grid_resolution, 100);
+        assert_eq!(s.contraction_frequency, 0.7);
+        assert_eq!(s.diameter, 0.040);
+        assert_eq!(s.height, 0.028);
+        assert_eq!(s.thickness, 0.004);
+        assert_eq!(s.elastic_modulus, 1186.0);
+        assert_eq!(s.contraction_ratio, 0.56);
+        assert_eq!(s.tentacle_cross_section, 0.01);
+        assert!((s.cell_size() - 0.004).abs() < 1e-7);
+    }
+
+    #[test]
+    fn ron_round_trip() {
+        let mut s = Species::aurelia();
+        s.name = "Test".into();
+        s.expansion_stagger = 0.25;
+        let text = s.to_ron().unwrap();
+        assert_eq!(Species::from_ron(&text).unwrap(), s);
+    }
+
+    #[test]
+    fn missing_fields_take_defaults() {
+        let s = Species::from_ron("(name: \"Short\", contraction_frequency: 0.5)").unwrap();
+        assert_eq!(s.contraction_frequency, 0.5);
+        assert_eq!(s.diameter, Species::aurelia().diameter);
+    }
+
+    fn field_of(s: &Species) -> &'static str {
+        s.validate().unwrap_err().field().unwrap()
+    }
+
+    #[test]
+    fn every_bad_value_names_its_field() {
+        let cases: Vec<(&str, Box<dyn Fn(&mut Species)>)> = vec![
+            ("grid_resolution", Box::new(|s| s.grid_resolution = 8)),
+            ("grid_resolution", Box::new(|s| s.grid_resolution = 1024)),
+            ("viscosity", Box::new(|s| s.viscosity = -1.0)),
+            ("density", Box::new(|s| s.density = 0.0)),
+            ("diameter", Box::new(|s| s.diameter = f32::NAN)),
+            ("diameter", Box::new(|s| s.diameter = -0.04)),
+            ("height", Box::new(|s| s.height = 0.0)),
+            ("height", Box::new(|s| s.height = f32::INFINITY)),
+            ("thickness", Box::new(|s| s.thickness = 0.0)),
+            ("thickness", Box::new(|s| s.thickness = 0.03)),
+            ("elastic_modulus", Box::new(|s| s.elastic_modulus = -5.0)),
+            (
+                "angular_stiffness",
+                Box::new(|s| s.angular_stiffness = -1.0),
+            ),
+            ("muscle_modulus", Box::new(|s| s.muscle_modulus = 0.0)),
+            (
+                "contraction_frequency",
+                Box::new(|s| s.contraction_frequency = 0.0),
+            ),
+            (
+                "contraction_frequency",
+                Box::new(|s| s.contraction_frequency = -1.0),
+            ),
+            ("contraction_ratio", Box::new(|s| s.contraction_ratio = 1.5)),
+            ("expansion_stagger", Box::new(|s| s.expansion_stagger = 2.0)),
+            ("tentacle_length", Box::new(|s| s.tentacle_length = -0.01)),
+            ("mesh_segments", Box::new(|s| s.mesh_segments = 2)),
+            ("bell_color[3]", Box::new(|s| s.bell_color[3] = 2.0)),
+        ];
+        for (field, mutate) in cases {
+            let mut s = Species::aurelia();
+            mutate(&mut s);
+            assert_eq!(field_of(&s), field, "{:?}", s.validate());
+            let msg = s.validate().unwrap_err().to_string();
+            assert!(msg.contains(field), "message `{msg}` names `{field}`");
+        }
+    }
+
+    #[test]
+    fn bad_ron_is_an_error_not_a_panic() {
+        assert!(matches!(
+            Species::from_ron("(diameter: \"wide\")"),
+            Err(SpeciesError::Parse(_))
+        ));
+        let err = Species::from_ron("(diameter: -1.0)").unwrap_err();
+        assert_eq!(err.field(), Some("diameter"));
+    }
+}
