@@ -1,6 +1,14 @@
 //! The 2D slice simulation (paper sections 3.2–3.3).
 
+mod banded;
 pub mod body;
+pub mod coupling;
+pub mod fluid;
+pub mod muscle;
+pub mod pressure;
+mod slice;
+
+pub use slice::SliceSim;
 
 use glam::Vec2;
 
@@ -20,5 +28,3 @@ pub struct SliceView<'a> {
     /// `bell[len-1]`) and hangs away from the bell.
     pub tentacles: [&'a [Vec2]; 2],
 }
-
-pub struct SliceSim;

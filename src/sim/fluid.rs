@@ -1,0 +1,552 @@
+//! Incompressible 2D Navier–Stokes on a staggered (MAC) grid in a free-slip box.
+//!
+//! `u` lives on vertical faces, `v` on horizontal faces, so the discrete divergence of a
+//! projected field vanishes to round-off. One step is Stam's recipe:
+//! [`advect`](Fluid::advect), add force, [`diffuse`](Fluid::diffuse),
+//! [`project`](Fluid::project).
+
+use super::pressure::PoissonSolver;
+use glam::Vec2;
+
+pub struct Fluid {
+    /// Cells per side.
+    pub n: usize,
+    /// Cell size, m.
+    pub h: f32,
+    /// Horizontal velocity on vertical faces, `(n + 1) × n`, index `j * (n + 1) + i`.
+    pub u: Vec<f32>,
+    /// Vertical velocity on horizontal faces, `n × (n + 1)`, index `j * n + i`.
+    pub v: Vec<f32>,
+    /// Force density accumulated for the next step, N/m³, on the `u` faces.
+    pub force_u: Vec<f32>,
+    /// Force density accumulated for the next step, N/m³, on the `v` faces.
+    pub force_v: Vec<f32>,
+    /// Kinematic viscosity, m²/s.
+    pub nu: f32,
+    /// Density, kg/m³.
+    pub rho: f32,
+    /// Absorbing layer along the walls: damping rate (1/s) per face, 0 in the interior.
+    sponge_u: Vec<f32>,
+    sponge_v: Vec<f32>,
+    scratch_u: Vec<f32>,
+    scratch_v: Vec<f32>,
+    phi: Vec<f32>,
+    poisson: PoissonSolver,
+    divergence_max: f32,
+}
+
+/// Which staggered component a sample refers to.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Component {
+    U,
+    V,
+}
+
+impl Fluid {
+    pub fn new(n: usize, h: f32, nu: f32, rho: f32) -> Self {
+        let faces = (n + 1) * n;
+        Self {
+            n,
+            h,
+            u: vec![0.0; faces],
+            v: vec![0.0; faces],
+            force_u: vec![0.0; faces],
+            force_v: vec![0.0; faces],
+            nu,
+            rho,
+            sponge_u: vec![0.0; faces],
+            sponge_v: vec![0.0; faces],
+            scratch_u: vec![0.0; faces],
+            scratch_v: vec![0.0; faces],
+            phi: vec![0.0; n * n],
+            poisson: PoissonSolver::new(n, h),
+            divergence_max: 0.0,
+        }
+    }
+
+    /// Side of the domain, m.
+    pub fn size(&self) -> f32 {
+        self.n as f32 * self.h
+    }
+
+    /// One fluid step of `dt` seconds with the accumulated force, which is then cleared.
+    pub fn step(&mut self, dt: f32) {
+        self.advect(dt);
+        self.apply_force(dt);
+        self.diffuse(dt);
+        self.absorb(dt);
+        self.project();
+    }
+
+    /// Sets up an absorbing layer `width` cells wide along the walls whose damping rises
+    /// smoothly to `rate` (1/s) at the wall. It stands in for open water: a wake that
+    /// reaches the box would otherwise come back and push the jellyfish.
+    pub fn set_sponge(&mut self, width: usize, rate: f32) {
+        let n = self.n as f32;
+        let w = width as f32;
+        let ramp = |d: f32| {
+            if w <= 0.0 || d >= w {
+                0.0
+            } else {
+                let s = 1.0 - d / w;
+                rate * s * s
+            }
+        };
+        // Distance (in cells) from a point in grid units to the nearest wall.
+        let wall = |x: f32, y: f32| x.min(n - x).min(y).min(n - y);
+        let n = self.n;
+        for j in 0..n {
+            for i in 0..=n {
+                self.sponge_u[j * (n + 1) + i] = ramp(wall(i as f32, j as f32 + 0.5));
+            }
+        }
+        for j in 0..=n {
+            for i in 0..n {
+                self.sponge_v[j * n + i] = ramp(wall(i as f32 + 0.5, j as f32));
+            }
+        }
+    }
+
+    /// Damps the velocity in the absorbing layer.
+    pub fn absorb(&mut self, dt: f32) {
+        for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
+            if *s > 0.0 {
+                *u *= (-s * dt).exp();
+            }
+        }
+        for (v, s) in self.v.iter_mut().zip(&self.sponge_v) {
+            if *s > 0.0 {
+                *v *= (-s * dt).exp();
+            }
+        }
+    }
+
+    /// Semi-Lagrangian self-advection: each face takes the velocity found by tracing the
+    /// flow back one step (midpoint rule). Unconditionally stable, a little diffusive.
+    /// Works in grid units: positions in cells, velocities in cells per step.
+    pub fn advect(&mut self, dt: f32) {
+        let n = self.n;
+        let s = dt / self.h;
+        let (u, v) = (&self.u, &self.v);
+        // Velocity (cells per step) at a point in grid units where x, y are cell-corner based.
+        let velocity = |x: f32, y: f32| {
+            (
+                s * bilinear(u, n + 1, n, x, y - 0.5),
+                s * bilinear(v, n, n + 1, x - 0.5, y),
+            )
+        };
+        for j in 0..n {
+            for i in 1..n {
+                let (x, y) = (i as f32, j as f32 + 0.5);
+                // The face's own velocity: u directly, v from the four around it.
+                let vu = s * u[j * (n + 1) + i];
+                let vv = s
+                    * 0.25
+                    * (v[j * n + i - 1]
+                        + v[j * n + i]
+                        + v[(j + 1) * n + i - 1]
+                        + v[(j + 1) * n + i]);
+                let (mx, my) = velocity(x - 0.5 * vu, y - 0.5 * vv);
+                self.scratch_u[j * (n + 1) + i] = bilinear(u, n + 1, n, x - mx, y - my - 0.5);
+            }
+        }
+        for j in 1..n {
+            for i in 0..n {
+                let (x, y) = (i as f32 + 0.5, j as f32);
+                let vv = s * v[j * n + i];
+                let vu = s
+                    * 0.25
+                    * (u[(j - 1) * (n + 1) + i]
+                        + u[(j - 1) * (n + 1) + i + 1]
+                        + u[j * (n + 1) + i]
+                        + u[j * (n + 1) + i + 1]);
+                let (mx, my) = velocity(x - 0.5 * vu, y - 0.5 * vv);
+                self.scratch_v[j * n + i] = bilinear(v, n, n + 1, x - mx - 0.5, y - my);
+            }
+        }
+        std::mem::swap(&mut self.u, &mut self.scratch_u);
+        std::mem::swap(&mut self.v, &mut self.scratch_v);
+        self.enforce_walls();
+    }
+
+    /// Adds the accumulated force density, then clears it.
+    pub fn apply_force(&mut self, dt: f32) {
+        let scale = dt / self.rho;
+        for (u, f) in self.u.iter_mut().zip(self.force_u.iter_mut()) {
+            *u += scale * *f;
+            *f = 0.0;
+        }
+        for (v, f) in self.v.iter_mut().zip(self.force_v.iter_mut()) {
+            *v += scale * *f;
+            *f = 0.0;
+        }
+        self.enforce_walls();
+    }
+
+    /// Viscosity, explicit, sub-stepped where `ν·dt/h²` would be unstable. For sea water at
+    /// these scales `ν·dt/h²` is about 1e-3, so this is one cheap sweep.
+    pub fn diffuse(&mut self, dt: f32) {
+        let alpha = self.nu * dt / (self.h * self.h);
+        if alpha <= 0.0 {
+            return;
+        }
+        let substeps = (alpha / 0.2).ceil().max(1.0) as usize;
+        let a = alpha / substeps as f32;
+        let n = self.n;
+        for _ in 0..substeps {
+            laplacian_step(&self.u, &mut self.scratch_u, n + 1, n, a);
+            laplacian_step(&self.v, &mut self.scratch_v, n, n + 1, a);
+            std::mem::swap(&mut self.u, &mut self.scratch_u);
+            std::mem::swap(&mut self.v, &mut self.scratch_v);
+            self.enforce_walls();
+        }
+    }
+
+    /// Removes the divergent part of the velocity with an exact Poisson solve.
+    pub fn project(&mut self) {
+        let (n, h) = (self.n, self.h);
+        for j in 0..n {
+            for i in 0..n {
+                self.phi[j * n + i] = self.divergence(i, j);
+            }
+        }
+        self.poisson.solve(&mut self.phi);
+        let phi = &self.phi;
+        for j in 0..n {
+            for i in 1..n {
+                self.u[j * (n + 1) + i] -= (phi[j * n + i] - phi[j * n + i - 1]) / h;
+            }
+        }
+        for j in 1..n {
+            for i in 0..n {
+                self.v[j * n + i] -= (phi[j * n + i] - phi[(j - 1) * n + i]) / h;
+            }
+        }
+        self.divergence_max = (0..n * n)
+            .map(|c| self.divergence(c % n, c / n).abs())
+            .fold(0.0, f32::max);
+    }
+
+    /// Discrete divergence of cell `(i, j)`, 1/s.
+    pub fn divergence(&self, i: usize, j: usize) -> f32 {
+        let n = self.n;
+        let du = self.u[j * (n + 1) + i + 1] - self.u[j * (n + 1) + i];
+        let dv = self.v[(j + 1) * n + i] - self.v[j * n + i];
+        (du + dv) / self.h
+    }
+
+    /// max |div u| after the last projection, 1/s.
+    pub fn divergence_max(&self) -> f32 {
+        self.divergence_max
+    }
+
+    /// max |u| over the grid (face components), m/s.
+    pub fn speed_max(&self) -> f32 {
+        let n = self.n;
+        let mut max2 = 0.0f32;
+        for j in 0..n {
+            for i in 0..n {
+                let uc = 0.5 * (self.u[j * (n + 1) + i] + self.u[j * (n + 1) + i + 1]);
+                let vc = 0.5 * (self.v[j * n + i] + self.v[(j + 1) * n + i]);
+                max2 = max2.max(uc * uc + vc * vc);
+            }
+        }
+        max2.sqrt()
+    }
+
+    /// Velocity at a point, bilinear per component.
+    pub fn velocity_at(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
+            self.sample_component(Component::U, p),
+            self.sample_component(Component::V, p),
+        )
+    }
+
+    /// Bilinear sample of one component. Outside the box, the nearest value (free slip).
+    pub fn sample_component(&self, c: Component, p: Vec2) -> f32 {
+        let field = match c {
+            Component::U => &self.u,
+            Component::V => &self.v,
+        };
+        let mut value = 0.0;
+        for (index, w) in self.stencil(c, p) {
+            value += w * field[index];
+        }
+        value
+    }
+
+    /// The four faces of component `c` around `p` and their bilinear weights (sum 1).
+    /// Interpolation and force spreading both use this, which makes them adjoint.
+    pub fn stencil(&self, c: Component, p: Vec2) -> [(usize, f32); 4] {
+        let n = self.n;
+        let (gx, gy, nx, ny) = match c {
+            Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
+            Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
+        };
+        let gx = if gx.is_finite() { gx } else { 0.0 };
+        let gy = if gy.is_finite() { gy } else { 0.0 };
+        let gx = gx.clamp(0.0, (nx - 1) as f32);
+        let gy = gy.clamp(0.0, (ny - 1) as f32);
+        let i0 = (gx as usize).min(nx - 2);
+        let j0 = (gy as usize).min(ny - 2);
+        let fx = gx - i0 as f32;
+        let fy = gy - j0 as f32;
+        let at = |i: usize, j: usize| j * nx + i;
+        [
+            (at(i0, j0), (1.0 - fx) * (1.0 - fy)),
+            (at(i0 + 1, j0), fx * (1.0 - fy)),
+            (at(i0, j0 + 1), (1.0 - fx) * fy),
+            (at(i0 + 1, j0 + 1), fx * fy),
+        ]
+    }
+
+    /// Spreads a point force (N per metre of depth) onto the force density of the faces
+    /// around `p` with the bilinear weights: the total over the grid times `h²` is `force`.
+    pub fn spread_force(&mut self, p: Vec2, force: Vec2) {
+        let inv_area = 1.0 / (self.h * self.h);
+        for (index, w) in self.stencil(Component::U, p) {
+            self.force_u[index] += w * force.x * inv_area;
+        }
+        for (index, w) in self.stencil(Component::V, p) {
+            self.force_v[index] += w * force.y * inv_area;
+        }
+    }
+
+    /// Shifts every field by whole cells (`dx`, `dy` each in -1..=1) so that the content
+    /// moves by `-(dx, dy)·h`; quiet water flows in at the opened side.
+    pub fn shift(&mut self, dx: i32, dy: i32) {
+        let n = self.n;
+        shift_field(&mut self.u, &mut self.scratch_u, n + 1, n, dx, dy);
+        shift_field(&mut self.v, &mut self.scratch_v, n, n + 1, dx, dy);
+        self.enforce_walls();
+        self.project();
+    }
+
+    /// Averages the flow with its mirror image about the vertical centre line.
+    pub fn symmetrise(&mut self) {
+        let n = self.n;
+        for j in 0..n {
+            let row = &mut self.u[j * (n + 1)..(j + 1) * (n + 1)];
+            for i in 0..=n / 2 {
+                let m = n - i;
+                let avg = 0.5 * (row[i] - row[m]);
+                row[i] = avg;
+                row[m] = -avg;
+            }
+        }
+        for j in 0..=n {
+            let row = &mut self.v[j * n..(j + 1) * n];
+            for i in 0..n / 2 {
+                let m = n - 1 - i;
+                let avg = 0.5 * (row[i] + row[m]);
+                row[i] = avg;
+                row[m] = avg;
+            }
+        }
+    }
+
+    /// Zero normal velocity on the walls.
+    fn enforce_walls(&mut self) {
+        let n = self.n;
+        for j in 0..n {
+            self.u[j * (n + 1)] = 0.0;
+            self.u[j * (n + 1) + n] = 0.0;
+        }
+        for i in 0..n {
+            self.v[i] = 0.0;
+            self.v[n * n + i] = 0.0;
+        }
+    }
+
+    /// Total kinetic energy per unit depth, J/m.
+    pub fn kinetic_energy(&self) -> f32 {
+        let sum: f32 = self.u.iter().chain(&self.v).map(|x| x * x).sum();
+        0.5 * self.rho * sum * self.h * self.h
+    }
+
+    /// Whether every velocity is finite.
+    pub fn is_finite(&self) -> bool {
+        self.u.iter().chain(&self.v).all(|x| x.is_finite())
+    }
+
+    /// Sets all velocities and pending forces to zero.
+    pub fn clear(&mut self) {
+        for f in [
+            &mut self.u,
+            &mut self.v,
+            &mut self.force_u,
+            &mut self.force_v,
+        ] {
+            f.iter_mut().for_each(|x| *x = 0.0);
+        }
+        self.divergence_max = 0.0;
+    }
+}
+
+/// Bilinear sample of an `nx × ny` array at fractional index `(x, y)`, clamped to the
+/// edges (zero normal gradient: free slip for the tangential component).
+#[inline]
+fn bilinear(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> f32 {
+    let x = x.clamp(0.0, (nx - 1) as f32);
+    let y = y.clamp(0.0, (ny - 1) as f32);
+    // Non-negative after the clamp, so truncation is floor (and NaN becomes 0).
+    let i = (x as usize).min(nx - 2);
+    let j = (y as usize).min(ny - 2);
+    let fx = x - i as f32;
+    let fy = y - j as f32;
+    let row0 = j * nx + i;
+    let row1 = row0 + nx;
+    let a = field[row0] + fx * (field[row0 + 1] - field[row0]);
+    let b = field[row1] + fx * (field[row1 + 1] - field[row1]);
+    a + fy * (b - a)
+}
+
+/// One explicit diffusion sweep `dst = src + a·∇²src` with zero-gradient edges.
+fn laplacian_step(src: &[f32], dst: &mut [f32], nx: usize, ny: usize, a: f32) {
+    for j in 0..ny {
+        let jm = j.saturating_sub(1);
+        let jp = (j + 1).min(ny - 1);
+        for i in 0..nx {
+            let im = i.saturating_sub(1);
+            let ip = (i + 1).min(nx - 1);
+            let c = src[j * nx + i];
+            let lap =
+                src[j * nx + im] + src[j * nx + ip] + src[jm * nx + i] + src[jp * nx + i] - 4.0 * c;
+            dst[j * nx + i] = c + a * lap;
+        }
+    }
+}
+
+/// `dst(i, j) = src(i + dx, j + dy)`, zero where that falls outside.
+fn shift_field(
+    field: &mut Vec<f32>,
+    scratch: &mut Vec<f32>,
+    nx: usize,
+    ny: usize,
+    dx: i32,
+    dy: i32,
+) {
+    for j in 0..ny {
+        for i in 0..nx {
+            let si = i as i32 + dx;
+            let sj = j as i32 + dy;
+            scratch[j * nx + i] = if si >= 0 && sj >= 0 && (si as usize) < nx && (sj as usize) < ny
+            {
+                field[sj as usize * nx + si as usize]
+            } else {
+                0.0
+            };
+        }
+    }
+    std::mem::swap(field, scratch);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn swirl(n: usize) -> Fluid {
+        let mut f = Fluid::new(n, 0.01, 1.3e-6, 1000.0);
+        for j in 0..n {
+            for i in 0..=n {
+                f.u[j * (n + 1) + i] = ((i * 31 + j * 17) % 13) as f32 * 0.01 - 0.06;
+            }
+        }
+        for j in 0..=n {
+            for i in 0..n {
+                f.v[j * n + i] = ((i * 7 + j * 29) % 11) as f32 * 0.01 - 0.05;
+            }
+        }
+        f.enforce_walls();
+        f
+    }
+
+    #[test]
+    fn projection_leaves_no_divergence() {
+        for n in [16, 64, 100] {
+            let mut f = swirl(n);
+            f.project();
+            let rel = f.h * f.divergence_max() / f.speed_max();
+            assert!(rel <= 1e-4, "n = {n}: h·max|div|/max|u| = {rel}");
+        }
+    }
+
+    #[test]
+    fn projection_is_idempotent() {
+        let mut f = swirl(32);
+        f.project();
+        let before = f.u.clone();
+        f.project();
+        let change =
+            f.u.iter()
+                .zip(&before)
+                .fold(0.0f32, |m, (a, b)| m.max((a - b).abs()));
+        assert!(change < 1e-5, "second projection changed u by {change}");
+    }
+
+    #[test]
+    fn spreading_conserves_total_force() {
+        let mut f = Fluid::new(40, 0.005, 0.0, 1000.0);
+        let points = [
+            Vec2::new(0.0731, 0.1012),
+            Vec2::new(0.1, 0.05),
+            Vec2::new(0.0123, 0.187),
+        ];
+        let forces = [
+            Vec2::new(0.3, -1.2),
+            Vec2::new(-2.0, 0.7),
+            Vec2::new(0.01, 0.5),
+        ];
+        for (p, force) in points.iter().zip(&forces) {
+            f.spread_force(*p, *force);
+        }
+        let area = f.h * f.h;
+        let total = Vec2::new(f.force_u.iter().sum::<f32>(), f.force_v.iter().sum::<f32>()) * area;
+        let expected: Vec2 = forces.iter().sum();
+        assert!((total - expected).length() < 1e-5, "{total} vs {expected}");
+    }
+
+    #[test]
+    fn interpolation_and_spreading_are_adjoint() {
+        // <J u, F> over points equals <u, S F> over the grid with the h² inner product.
+        let mut f = swirl(24);
+        let p = Vec2::new(0.0937, 0.1411);
+        let force = Vec2::new(0.7, -0.3);
+        let lhs = f.velocity_at(p).dot(force);
+        f.spread_force(p, force);
+        let area = f.h * f.h;
+        let rhs: f32 = f.u.iter().zip(&f.force_u).map(|(u, g)| u * g).sum::<f32>() * area
+            + f.v.iter().zip(&f.force_v).map(|(v, g)| v * g).sum::<f32>() * area;
+        assert!(
+            (lhs - rhs).abs() < 1e-6 * lhs.abs().max(1.0),
+            "{lhs} vs {rhs}"
+        );
+    }
+
+    #[test]
+    fn uniform_flow_survives_advection() {
+        let n = 32;
+        let mut f = Fluid::new(n, 0.01, 0.0, 1000.0);
+        for j in 0..n {
+            for i in 1..n {
+                f.u[j * (n + 1) + i] = 0.05;
+            }
+        }
+        f.advect(0.1);
+        // Away from the walls, uniform flow is a fixed point of semi-Lagrangian advection.
+        let mid = f.u[(n / 2) * (n + 1) + n / 2];
+        assert!((mid - 0.05).abs() < 1e-6, "{mid}");
+    }
+
+    #[test]
+    fn viscosity_dissipates_energy() {
+        let mut f = swirl(32);
+        f.project();
+        f.nu = 1e-4;
+        let e0 = f.kinetic_energy();
+        f.diffuse(0.5);
+        f.project();
+        assert!(f.kinetic_energy() < e0);
+        assert!(f.is_finite());
+    }
+}
