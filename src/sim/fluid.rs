@@ -109,59 +109,46 @@ impl Fluid {
 
     /// Damps the velocity in the absorbing layer.
     pub fn absorb(&mut self, dt: f32) {
+        // Implicit Euler: stable for any rate and step.
         for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
-            if *s > 0.0 {
-                *u *= (-s * dt).exp();
-            }
+            *u /= 1.0 + s * dt;
         }
         for (v, s) in self.v.iter_mut().zip(&self.sponge_v) {
-            if *s > 0.0 {
-                *v *= (-s * dt).exp();
-            }
+            *v /= 1.0 + s * dt;
         }
     }
 
-    /// Semi-Lagrangian self-advection: each face takes the velocity found by tracing the
-    /// flow back one step (midpoint rule). Unconditionally stable, a little diffusive.
-    /// Works in grid units: positions in cells, velocities in cells per step.
+    /// Semi-Lagrangian self-advection (Stam): each face takes the velocity found one
+    /// step upstream. Unconditionally stable, a little diffusive. Works in grid units:
+    /// positions in cells, velocities in cells per step.
     pub fn advect(&mut self, dt: f32) {
         let n = self.n;
         let s = dt / self.h;
         let (u, v) = (&self.u, &self.v);
-        // Velocity (cells per step) at a point in grid units where x, y are cell-corner based.
-        let velocity = |x: f32, y: f32| {
-            (
-                s * bilinear(u, n + 1, n, x, y - 0.5),
-                s * bilinear(v, n, n + 1, x - 0.5, y),
-            )
-        };
         for j in 0..n {
             for i in 1..n {
-                let (x, y) = (i as f32, j as f32 + 0.5);
-                // The face's own velocity: u directly, v from the four around it.
-                let vu = s * u[j * (n + 1) + i];
-                let vv = s
+                // The face's own velocity: u directly, v from the four faces around it.
+                let cu = s * u[j * (n + 1) + i];
+                let cv = s
                     * 0.25
                     * (v[j * n + i - 1]
                         + v[j * n + i]
                         + v[(j + 1) * n + i - 1]
                         + v[(j + 1) * n + i]);
-                let (mx, my) = velocity(x - 0.5 * vu, y - 0.5 * vv);
-                self.scratch_u[j * (n + 1) + i] = bilinear(u, n + 1, n, x - mx, y - my - 0.5);
+                self.scratch_u[j * (n + 1) + i] =
+                    bilinear(u, n + 1, n, i as f32 - cu, j as f32 - cv);
             }
         }
         for j in 1..n {
             for i in 0..n {
-                let (x, y) = (i as f32 + 0.5, j as f32);
-                let vv = s * v[j * n + i];
-                let vu = s
+                let cv = s * v[j * n + i];
+                let cu = s
                     * 0.25
                     * (u[(j - 1) * (n + 1) + i]
                         + u[(j - 1) * (n + 1) + i + 1]
                         + u[j * (n + 1) + i]
                         + u[j * (n + 1) + i + 1]);
-                let (mx, my) = velocity(x - 0.5 * vu, y - 0.5 * vv);
-                self.scratch_v[j * n + i] = bilinear(v, n, n + 1, x - mx - 0.5, y - my);
+                self.scratch_v[j * n + i] = bilinear(v, n, n + 1, i as f32 - cu, j as f32 - cv);
             }
         }
         std::mem::swap(&mut self.u, &mut self.scratch_u);
