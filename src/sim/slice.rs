@@ -361,6 +361,12 @@ impl SliceSim {
         self.last_substeps
     }
 
+    /// Corrupts one body point with NaN, as a blow-up would: for testing recovery.
+    #[doc(hidden)]
+    pub fn poison_for_tests(&mut self) {
+        self.body.points[0] = Vec2::NAN;
+    }
+
     /// Applies new parameters to a living slice. Muscle timing, stiffness and water take
     /// effect at once; a change of geometry or grid rebuilds the slice at rest in place,
     /// keeping time, distance and world position.
