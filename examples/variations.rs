@@ -1,0 +1,248 @@
+//! The paper's Fig. 9 rendered offscreen: rows expanded (rest) and contracted, columns plain
+//! disc extrapolation, structural, compression, unstructured, and all variation together.
+//!
+//! `cargo run --example variations -- --out variations.png [--elevation 22]` (degrees the
+//! camera looks down; negative looks up into the subumbrella).
+//! Headless: no window; with no GPU it runs on Mesa's software Vulkan (`mesa-vulkan-drivers`,
+//! set `XDG_RUNTIME_DIR` to quiet it). The slices are hand-made ([`SliceOutline`]): the
+//! contracted row pulls opposite pairs towards the axis, to 56% of the rest span at the margin.
+
+use bevy::{
+    app::SubApps,
+    asset::RenderAssetUsages,
+    camera::{RenderTarget, ScalingMode},
+    mesh::{Indices, PrimitiveTopology},
+    prelude::*,
+    render::{
+        RenderPlugin,
+        render_resource::{Extent3d, PollType, TextureDimension, TextureFormat, TextureUsages},
+        renderer::RenderDevice,
+        view::screenshot::{Screenshot, save_to_disk},
+    },
+    window::ExitCondition,
+    winit::WinitPlugin,
+};
+use bevy_jellyfish::Species;
+use bevy_jellyfish::shape::{JellyMesh, SliceOutline, SurfaceBuffers};
+use std::path::PathBuf;
+
+const WIDTH: u32 = 1500;
+const HEIGHT: u32 = 720;
+/// Metres to scene units: a 40 mm bell becomes one unit wide.
+const SCALE: f32 = 25.0;
+const SEED: u32 = 7;
+
+fn main() {
+    let out = PathBuf::from(arg("--out").unwrap_or_else(|| "variations.png".into()));
+    let elevation: f32 =
+        arg("--elevation").map_or(22.0, |e| e.parse().expect("--elevation: degrees"));
+    let _ = std::fs::remove_file(&out);
+    let mut apps = headless_app();
+    let target = render_target(&mut apps);
+    spawn_scene(apps.main.world_mut(), target.clone(), elevation);
+    // Pipelines compile synchronously, so a few frames are enough before the capture.
+    for _ in 0..3 {
+        update(&mut apps);
+    }
+    let image = target.as_image().expect("image target").clone();
+    apps.main
+        .world_mut()
+        .spawn(Screenshot::image(image))
+        .observe(save_to_disk(out.clone()));
+    for _ in 0..30 {
+        update(&mut apps);
+        if out.exists() {
+            println!("wrote {}", out.display());
+            return;
+        }
+    }
+    eprintln!("no screenshot was written to {}", out.display());
+    std::process::exit(1);
+}
+
+/// The value after `--name` on the command line.
+fn arg(name: &str) -> Option<String> {
+    let args: Vec<String> = std::env::args().collect();
+    let i = args.iter().position(|a| a == name)?;
+    Some(
+        args.get(i + 1)
+            .unwrap_or_else(|| panic!("{name} needs a value"))
+            .clone(),
+    )
+}
+
+/// The five columns of Fig. 9: the species with only the named variation left on.
+fn columns() -> [(&'static str, Species); 5] {
+    let all = Species::aurelia();
+    let plain = Species {
+        structural_scale: 0.0,
+        compression_scale: 0.0,
+        unstructured_scale: 0.0,
+        ..all.clone()
+    };
+    [
+        ("3D extrapolation", plain.clone()),
+        (
+            "structural",
+            Species {
+                structural_scale: all.structural_scale,
+                ..plain.clone()
+            },
+        ),
+        (
+            "compression",
+            Species {
+                compression_scale: all.compression_scale,
+                ..plain.clone()
+            },
+        ),
+        (
+            "unstructured",
+            Species {
+                unstructured_scale: all.unstructured_scale,
+                ..plain
+            },
+        ),
+        ("all", all),
+    ]
+}
+
+fn spawn_scene(world: &mut World, target: RenderTarget, elevation: f32) {
+    let species = Species::aurelia();
+    let rows = [
+        ("expanded", SliceOutline::rest(&species, 25, 12), 0.95),
+        (
+            "contracted",
+            SliceOutline::contracted(&species, 25, 12, 1.0),
+            -1.05,
+        ),
+    ];
+    let bell = world
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial {
+            base_color: Color::srgb(0.72, 0.82, 0.95),
+            perceptual_roughness: 0.55,
+            reflectance: 0.3,
+            ..default()
+        });
+    let tentacle = world
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial {
+            base_color: Color::srgb(0.95, 0.7, 0.75),
+            perceptual_roughness: 0.7,
+            ..default()
+        });
+    for (row, slice, y) in &rows {
+        for (col, (name, sp)) in columns().iter().enumerate() {
+            let jelly = JellyMesh::from_slice(&slice.view(), sp, SEED, 0.0)
+                .unwrap_or_else(|e| panic!("{row}/{name}: {e}"));
+            let x = (col as f32 - 2.0) * 1.45;
+            let at = Transform::from_xyz(x, *y, 0.0).with_scale(Vec3::splat(SCALE));
+            for (buffers, material) in [(&jelly.umbrella, &bell), (&jelly.tentacles, &tentacle)] {
+                let mesh = world.resource_mut::<Assets<Mesh>>().add(to_mesh(buffers));
+                world.spawn((Mesh3d(mesh), MeshMaterial3d(material.clone()), at));
+            }
+            println!(
+                "{row:>10} / {name:<16}: umbrella {} vertices, tentacles {} vertices",
+                jelly.umbrella.vertex_count(),
+                jelly.tentacles.vertex_count()
+            );
+        }
+    }
+    // A low key light from the side brings out the relief of the variations.
+    world.spawn((
+        DirectionalLight {
+            illuminance: 10000.0,
+            ..default()
+        },
+        Transform::from_xyz(-6.0, 2.5, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let elevation = elevation.to_radians();
+    let eye = Vec3::new(0.0, elevation.sin(), elevation.cos()) * 20.0 + Vec3::Y * -0.1;
+    world.spawn((
+        Camera3d::default(),
+        Camera {
+            clear_color: ClearColorConfig::Custom(Color::srgb(0.02, 0.04, 0.08)),
+            ..default()
+        },
+        Projection::Orthographic(OrthographicProjection {
+            scaling_mode: ScalingMode::FixedVertical {
+                viewport_height: 4.1,
+            },
+            ..OrthographicProjection::default_3d()
+        }),
+        AmbientLight {
+            brightness: 400.0,
+            ..default()
+        },
+        target,
+        Transform::from_translation(eye).looking_at(Vec3::new(0.0, -0.1, 0.0), Vec3::Y),
+    ));
+}
+
+/// Copies shape buffers into a Bevy mesh (the plugin updates such meshes in place).
+fn to_mesh(b: &SurfaceBuffers) -> Mesh {
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, b.positions.clone())
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals.clone())
+    .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, b.uvs.clone())
+    .with_inserted_indices(Indices::U32(b.indices.clone()))
+}
+
+/// An app with no window and no runner: we pump it ourselves (Bevy's
+/// `externally_driven_headless_renderer` example).
+fn headless_app() -> SubApps {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(RenderPlugin {
+                synchronous_pipeline_compilation: true,
+                ..default()
+            })
+            .disable::<WinitPlugin>(),
+    );
+    app.finish();
+    app.cleanup();
+    std::mem::take(app.sub_apps_mut())
+}
+
+fn render_target(apps: &mut SubApps) -> RenderTarget {
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width: WIDTH,
+            height: HEIGHT,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT;
+    apps.main
+        .world_mut()
+        .resource_mut::<Assets<Image>>()
+        .add(image)
+        .into()
+}
+
+/// One frame, then wait for the GPU (or llvmpipe) to finish it.
+fn update(apps: &mut SubApps) {
+    apps.update();
+    apps.main
+        .world()
+        .resource::<RenderDevice>()
+        .wgpu_device()
+        .poll(PollType::Wait {
+            submission_index: None,
+            timeout: None,
+        })
+        .expect("device poll");
+}

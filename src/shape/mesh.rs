@@ -1,0 +1,172 @@
+//! One jellyfish's surfaces, regenerated in place from its slice each frame.
+
+use super::buffers::SurfaceBuffers;
+use super::discs::angles;
+use super::input::{ShapeError, check};
+use super::noise_field::{NoiseField, NoiseKey};
+use super::profile::Profile;
+use super::tentacles::{self, TentacleLayout, TentacleScratch};
+use super::umbrella::{self, Column};
+use super::variation::Variation;
+use crate::sim::SliceView;
+use crate::species::Species;
+use noise::Perlin;
+use std::f32::consts::TAU;
+
+/// Mesh resolution, from the species. Clamped to the ranges `Species::validate` allows, so
+/// an unvalidated species still gives a well-formed mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Resolution {
+    /// Rings per umbrella surface from the apex to the margin.
+    pub rings: usize,
+    /// Segments around the axis.
+    pub segments: usize,
+    pub tentacles: TentacleLayout,
+}
+
+impl Resolution {
+    pub fn of(species: &Species) -> Self {
+        let rings = species.mesh_rings.clamp(2, 256) as usize;
+        Self {
+            rings,
+            segments: species.mesh_segments.clamp(3, 512) as usize,
+            tentacles: TentacleLayout {
+                count: species.tentacle_count.min(256) as usize,
+                sides: species.tentacle_sides.clamp(3, 32) as usize,
+                // As many rings along a tentacle as on the bell: fine enough to bend smoothly.
+                points: rings + 1,
+            },
+        }
+    }
+
+    pub fn umbrella_vertices(&self) -> usize {
+        umbrella::vertex_count(self.rings, self.segments)
+    }
+
+    pub fn tentacle_vertices(&self) -> usize {
+        self.tentacles.vertex_count()
+    }
+}
+
+/// The umbrella and tentacle surfaces of one jellyfish (two meshes for the plugin).
+///
+/// Topology (indices, UVs, buffer lengths) is fixed by the [`Resolution`]; a frame at the
+/// same resolution only overwrites positions and normals, so no buffer reallocates.
+/// With no tentacles the tentacle buffers are empty: don't hand them to Bevy then.
+#[derive(Clone, Debug, Default)]
+pub struct JellyMesh {
+    pub umbrella: SurfaceBuffers,
+    pub tentacles: SurfaceBuffers,
+    resolution: Option<Resolution>,
+    scratch: Scratch,
+}
+
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    profile: Profile,
+    angles: Vec<(f32, f32)>,
+    columns: Vec<Column>,
+    tentacles: TentacleScratch,
+    noise: NoiseField,
+    perlin: Option<(u32, Perlin)>,
+}
+
+impl JellyMesh {
+    /// Empty buffers; the first [`build_into`] sizes them.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Builds the surfaces of one slice. `seed` picks the individual, `time` (s) moves
+    /// its noise.
+    pub fn from_slice(
+        view: &SliceView,
+        species: &Species,
+        seed: u32,
+        time: f32,
+    ) -> Result<Self, ShapeError> {
+        let mut mesh = Self::new();
+        build_into(&mut mesh, view, species, seed, time)?;
+        Ok(mesh)
+    }
+
+    /// The resolution of the current buffers, once built.
+    pub fn resolution(&self) -> Option<Resolution> {
+        self.resolution
+    }
+}
+
+/// Regenerates `mesh` from a slice, in place.
+///
+/// On error the buffers keep the last good frame. Changing the species' resolution
+/// rebuilds the topology (and may reallocate) once.
+pub fn build_into(
+    mesh: &mut JellyMesh,
+    view: &SliceView,
+    species: &Species,
+    seed: u32,
+    time: f32,
+) -> Result<(), ShapeError> {
+    check(view, species, time)?;
+    let res = Resolution::of(species);
+    let s = &mut mesh.scratch;
+    if mesh.resolution != Some(res) {
+        umbrella::write_topology(res.rings, res.segments, &mut mesh.umbrella);
+        tentacles::write_topology(&res.tentacles, &mut mesh.tentacles);
+        angles(res.segments, &mut s.angles);
+        s.noise.set_samples(
+            umbrella::noise_samples(&s.angles, res.rings)
+                .chain(tentacles::noise_samples(&res.tentacles)),
+        );
+        mesh.resolution = Some(res);
+    }
+    let perlin = match s.perlin {
+        Some((cached, p)) if cached == seed => p,
+        _ => {
+            let p = Perlin::new(seed);
+            s.perlin = Some((seed, p));
+            p
+        }
+    };
+    let variation = Variation::new(species, perlin, time);
+    s.noise.update(
+        &variation,
+        NoiseKey {
+            seed,
+            lat_frequency_bits: species.noise_frequency_lat.to_bits(),
+            lon_frequency_bits: species.noise_frequency_lon.to_bits(),
+        },
+    );
+    let (umbrella_noise, tentacle_noise) = s.noise.values.split_at(res.rings * res.segments);
+    s.columns.clear();
+    s.columns.extend((0..res.segments).map(|j| {
+        let sigma = TAU * j as f32 / res.segments as f32;
+        Column {
+            lobe: variation.structural(sigma, 1.0),
+            ripple: variation.compression(sigma, 1.0, 1.0),
+        }
+    }));
+    s.profile
+        .build(view.bell, view.rest_bell, species, res.rings);
+    umbrella::write_surface(
+        &s.profile,
+        &s.angles,
+        &s.columns,
+        umbrella_noise,
+        &variation,
+        &mut mesh.umbrella,
+    );
+    let n = view.bell.len();
+    tentacles::write_surface(
+        &res.tentacles,
+        view.tentacles,
+        [view.bell[0], view.bell[n - 1]],
+        s.profile.margin(),
+        species.tentacle_radius,
+        tentacle_noise,
+        &variation,
+        &mut mesh.tentacles,
+        &mut s.tentacles,
+    );
+    Ok(())
+}

@@ -1,0 +1,193 @@
+//! Tentacles: the slice's two tentacle chains swept around the 3D aperture with the same
+//! disc scheme as the bell, as closed tubes.
+//!
+//! Each chain is resampled to `points` positions by arc index; the pair of chain points at
+//! the same fraction defines a disc, and tentacle `k` takes the point at σ_k = 2πk/count, so
+//! tentacle 0 is the right chain and, for an even count, tentacle count/2 the left one.
+//! Layout per tentacle: a root cap vertex, `points` rings of `sides + 1` vertices (the last
+//! repeats the first, for UVs), a tip cap vertex.
+
+use super::buffers::SurfaceBuffers;
+use super::discs::{Disc, angles};
+use super::profile::RingPair;
+use super::spline::catmull_rom;
+use super::variation::Variation;
+use glam::{Vec2, Vec3};
+use std::f32::consts::TAU;
+
+/// Tube and count of the tentacle surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TentacleLayout {
+    pub count: usize,
+    pub sides: usize,
+    /// Rings along each tentacle, root to tip (at least 2).
+    pub points: usize,
+}
+
+impl TentacleLayout {
+    fn per_tentacle(&self) -> usize {
+        2 + self.points * (self.sides + 1)
+    }
+
+    pub fn vertex_count(&self) -> usize {
+        self.count * self.per_tentacle()
+    }
+
+    fn ring(&self, t: usize, m: usize, i: usize) -> usize {
+        t * self.per_tentacle() + 1 + m * (self.sides + 1) + i
+    }
+
+    fn root(&self, t: usize) -> usize {
+        t * self.per_tentacle()
+    }
+
+    fn tip(&self, t: usize) -> usize {
+        self.root(t) + self.per_tentacle() - 1
+    }
+}
+
+/// Sizes the buffers and writes triangles and UVs (u around the tube, v root to tip).
+pub(crate) fn write_topology(layout: &TentacleLayout, buf: &mut SurfaceBuffers) {
+    let l = layout;
+    buf.reset(l.vertex_count());
+    for t in 0..l.count {
+        for i in 0..l.sides {
+            buf.triangle(l.root(t), l.ring(t, 0, i + 1), l.ring(t, 0, i));
+            for m in 0..l.points - 1 {
+                let (a, b) = (l.ring(t, m, i), l.ring(t, m, i + 1));
+                buf.quad(a, b, l.ring(t, m + 1, i), l.ring(t, m + 1, i + 1));
+            }
+            let last = l.points - 1;
+            buf.triangle(l.ring(t, last, i), l.ring(t, last, i + 1), l.tip(t));
+        }
+        buf.uvs[l.root(t)] = [0.5, 0.0];
+        buf.uvs[l.tip(t)] = [0.5, 1.0];
+        for m in 0..l.points {
+            for i in 0..=l.sides {
+                let uv = [i as f32 / l.sides as f32, m as f32 / (l.points - 1) as f32];
+                buf.uvs[l.ring(t, m, i)] = uv;
+            }
+        }
+    }
+}
+
+/// Latitude offset of the second (sideways) noise channel: far enough along the field to
+/// be uncorrelated with the first.
+pub const SIDEWAYS: f32 = 7.3;
+
+/// Latitude and angle of each noise sample, tentacle by tentacle, root to tip, two per
+/// point: latitude runs on from 1 at the margin to 2 at the tip, and again offset by
+/// [`SIDEWAYS`] for the sideways channel.
+pub fn noise_samples(layout: &TentacleLayout) -> impl Iterator<Item = (f32, (f32, f32))> {
+    let l = *layout;
+    (0..l.count).flat_map(move |t| {
+        let (sin, cos) = (TAU * t as f32 / l.count as f32).sin_cos();
+        (0..l.points).flat_map(move |m| {
+            let lat = 1.0 + m as f32 / (l.points - 1) as f32;
+            [(lat, (cos, sin)), (lat + SIDEWAYS, (cos, sin))]
+        })
+    })
+}
+
+/// Per-frame scratch: the chain discs and one tentacle's centreline.
+#[derive(Clone, Debug, Default)]
+pub struct TentacleScratch {
+    discs: Vec<Disc>,
+    centre: Vec<Vec3>,
+    tangent: Vec<Vec3>,
+    /// `(cos φ, sin φ)` around the tube.
+    around: Vec<(f32, f32)>,
+}
+
+/// Writes positions and (analytic, tube-radial) normals in place.
+///
+/// `chains` are the slice's left and right chains; an empty one hangs from its margin point
+/// `roots` with zero length. `noise` holds QP per [`noise_samples`]. Each centreline moves
+/// with the margin above it (structural and unstructured variation along the margin's
+/// mesoglea normal), the noise running on down the tentacle; a second channel, zero at the
+/// root, sways it sideways, so tentacles wave across the view as well as along it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn write_surface(
+    layout: &TentacleLayout,
+    chains: [&[Vec2]; 2],
+    roots: [Vec2; 2],
+    margin: &RingPair,
+    radius: f32,
+    noise: &[f32],
+    variation: &Variation,
+    buf: &mut SurfaceBuffers,
+    s: &mut TentacleScratch,
+) {
+    let l = layout;
+    let chains = [0, 1].map(|side| {
+        if chains[side].is_empty() {
+            std::slice::from_ref(&roots[side])
+        } else {
+            chains[side]
+        }
+    });
+    let aperture = Disc::through(margin.subumbrella[0], margin.subumbrella[1], Vec2::X);
+    let fraction = |m: usize| m as f32 / (l.points - 1) as f32;
+    angles(l.sides, &mut s.around);
+    s.discs.clear();
+    let mut radial = aperture.radial;
+    for m in 0..l.points {
+        let at = |c: &[Vec2]| catmull_rom(c, fraction(m) * (c.len() - 1) as f32);
+        let disc = Disc::through(at(chains[0]), at(chains[1]), radial);
+        radial = disc.radial;
+        s.discs.push(disc);
+    }
+    for t in 0..l.count {
+        let sigma = TAU * t as f32 / l.count as f32;
+        let (sin, cos) = sigma.sin_cos();
+        let cs = (cos, sin);
+        let normal = aperture.normal(margin.normal, cs);
+        let lobe = variation.structural(sigma, 1.0);
+        let sideways = aperture.direction((-sin, cos));
+        let noise = &noise[2 * t * l.points..][..2 * l.points];
+        s.centre.clear();
+        for (m, (disc, qp)) in s.discs.iter().zip(noise.chunks_exact(2)).enumerate() {
+            let c = lobe + variation.unstructured_with(1.0, qp[0]);
+            let side = variation.unstructured_with(fraction(m), qp[1]);
+            s.centre.push(disc.point(cs) + normal * c + sideways * side);
+        }
+        tangents(&s.centre, &mut s.tangent);
+        let t0 = s.tangent[0];
+        let q = aperture.direction(cs);
+        let mut n = (q - q.dot(t0) * t0).normalize_or(t0.any_orthonormal_vector());
+        for m in 0..l.points {
+            let tm = s.tangent[m];
+            // Parallel transport: the previous frame turned onto the new tangent, no twist.
+            n = (n - n.dot(tm) * tm).normalize_or(tm.any_orthonormal_vector());
+            let b = tm.cross(n);
+            for (i, &(cp, sp)) in s.around.iter().enumerate() {
+                let out = cp * n + sp * b;
+                let v = l.ring(t, m, i);
+                buf.positions[v] = (s.centre[m] + radius * out).to_array();
+                buf.normals[v] = out.to_array();
+            }
+            let (first, seam) = (l.ring(t, m, 0), l.ring(t, m, l.sides));
+            buf.positions[seam] = buf.positions[first];
+            buf.normals[seam] = buf.normals[first];
+        }
+        let last = l.points - 1;
+        let tip = s.tangent[last];
+        buf.positions[l.root(t)] = (s.centre[0] - radius * t0).to_array();
+        buf.normals[l.root(t)] = (-t0).to_array();
+        buf.positions[l.tip(t)] = (s.centre[last] + radius * tip).to_array();
+        buf.normals[l.tip(t)] = tip.to_array();
+    }
+}
+
+/// Unit tangents of a polyline by central differences; where it has no length the
+/// previous tangent (or straight down, -y) stands in.
+fn tangents(points: &[Vec3], out: &mut Vec<Vec3>) {
+    out.clear();
+    let n = points.len();
+    let mut last = Vec3::NEG_Y;
+    for i in 0..n {
+        let d = points[(i + 1).min(n - 1)] - points[i.saturating_sub(1)];
+        last = d.normalize_or(last);
+        out.push(last);
+    }
+}
