@@ -1,7 +1,7 @@
 //! Swims one slice headless and prints, per cycle, the distance travelled, the bell's
 //! enclosed area at the same phase and the worst relative divergence.
 //!
-//! `cargo run --release --no-default-features --example swim -- [cycles] [grid] [stagger] [freq] [frame_dt]`
+//! `cargo run --release --no-default-features --example swim -- [cycles] [grid] [stagger] [freq] [frame_dt] [tentacle_length] [angular_stiffness] [muscle_cross_section] [maccormack 0|1]`
 
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::Instant;
@@ -17,6 +17,9 @@ fn main() {
     species.tentacle_length = arg(5, species.tentacle_length);
     species.angular_stiffness = arg(6, species.angular_stiffness);
     species.muscle_cross_section = arg(7, species.muscle_cross_section);
+    if arg(8, 0.0) > 0.0 {
+        species.advection = bevy_jellyfish::species::Advection::MacCormack;
+    }
     let mut sim = match SliceSim::new(&species) {
         Ok(sim) => sim,
         Err(e) => return eprintln!("{e}"),
