@@ -255,7 +255,7 @@ impl Fluid {
             .fold(0.0, f32::max)
     }
 
-    /// max |u| over the grid (face components), m/s.
+    /// max |u| over the grid (cell-centred), m/s; NaN if any velocity is NaN.
     pub fn speed_max(&self) -> f32 {
         let n = self.n;
         let mut max2 = 0.0f32;
@@ -263,7 +263,11 @@ impl Fluid {
             for i in 0..n {
                 let uc = 0.5 * (self.u[j * (n + 1) + i] + self.u[j * (n + 1) + i + 1]);
                 let vc = 0.5 * (self.v[j * n + i] + self.v[(j + 1) * n + i]);
-                max2 = max2.max(uc * uc + vc * vc);
+                let s2 = uc * uc + vc * vc;
+                // Unlike f32::max, lets a NaN through and keeps it.
+                if s2 > max2 || s2.is_nan() {
+                    max2 = s2;
+                }
             }
         }
         max2.sqrt()
@@ -398,7 +402,8 @@ impl Fluid {
 }
 
 /// One semi-Lagrangian step of the staggered pair `src` through the velocity `vel`, by
-/// `s = dt/h` cells per unit velocity (negative: backwards). Wall faces keep `src`.
+/// `s = dt/h` cells per unit velocity (negative: backwards). Wall faces are left as they
+/// are: the caller zeroes them.
 /// With `bounds`, also records each result's interpolation corners' min and max.
 fn semi_lagrangian(
     src: [&[f32]; 2],
@@ -410,8 +415,6 @@ fn semi_lagrangian(
 ) {
     let [u, v] = vel;
     let [out_u, out_v] = out;
-    out_u.copy_from_slice(src[0]);
-    out_v.copy_from_slice(src[1]);
     for j in 0..n {
         for i in 1..n {
             // The face's own velocity: u directly, v from the four faces around it.

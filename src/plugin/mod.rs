@@ -1,0 +1,95 @@
+//! The ECS plugin: jellyfish as entities, slices stepped at a fixed rate, meshes rebuilt
+//! every frame, species as hot-reloadable assets.
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_jellyfish::{Jellyfish, JellyfishPlugin, Species};
+//!
+//! fn spawn(mut commands: Commands, assets: Res<AssetServer>) {
+//!     let species: Handle<Species> = assets.load("species/aurelia.ron");
+//!     commands.spawn((Jellyfish::new(species), Transform::from_xyz(0.0, 0.0, 0.0)));
+//! }
+//!
+//! App::new()
+//!     .add_plugins((DefaultPlugins, JellyfishPlugin::default()))
+//!     .add_systems(Startup, spawn)
+//!     .run();
+//! ```
+//!
+//! Order of a frame, in [`JellyfishSystems`]: `Prepare` (PreUpdate) creates slices and
+//! applies species edits; `StepSlices` (FixedUpdate) steps them; `WriteTransforms` and
+//! `RebuildMeshes` (PostUpdate) blend the last two steps into the frame.
+
+mod asset;
+mod components;
+mod diagnostics;
+mod material;
+mod meshing;
+mod motion;
+mod prepare;
+mod settings;
+mod step;
+
+pub use asset::{SpeciesLoader, SpeciesRejected};
+pub use components::{Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, SwimMotion};
+pub use diagnostics::JellyfishDiagnostics;
+pub use material::JellyfishMaterials;
+pub use settings::JellyfishSettings;
+
+use bevy::asset::{AssetEventSystems, AssetTrackingSystems};
+use bevy::prelude::*;
+use bevy::transform::TransformSystems;
+
+/// Adds jellyfish to an app. Settings live in the [`JellyfishSettings`] resource; one the
+/// app already has is kept.
+#[derive(Clone, Debug, Default)]
+pub struct JellyfishPlugin {
+    pub settings: JellyfishSettings,
+}
+
+/// The plugin's systems, in the order they run within a frame. Order your own systems
+/// against these (e.g. steering before `StepSlices`, reading meshes after `RebuildMeshes`).
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JellyfishSystems {
+    /// PreUpdate: create slices for new jellyfish, apply species and settings edits.
+    Prepare,
+    /// FixedUpdate: step the slices, in parallel over jellyfish.
+    StepSlices,
+    /// PostUpdate: move each jellyfish along its axis, blended between fixed steps.
+    WriteTransforms,
+    /// PostUpdate: rebuild meshes in place, before bounds and render extraction.
+    RebuildMeshes,
+}
+
+impl Plugin for JellyfishPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.world().contains_resource::<JellyfishSettings>() {
+            app.insert_resource(self.settings.clone());
+        }
+        app.register_type::<JellyfishSettings>()
+            .register_type::<Jellyfish>()
+            .add_plugins((
+                asset::plugin,
+                diagnostics::plugin,
+                material::plugin,
+                prepare::plugin,
+                step::plugin,
+                motion::plugin,
+                meshing::plugin,
+            ))
+            .configure_sets(
+                PreUpdate,
+                JellyfishSystems::Prepare.after(AssetTrackingSystems),
+            )
+            .configure_sets(
+                PostUpdate,
+                (
+                    JellyfishSystems::WriteTransforms,
+                    JellyfishSystems::RebuildMeshes,
+                )
+                    .chain()
+                    .before(TransformSystems::Propagate)
+                    .before(AssetEventSystems),
+            );
+    }
+}
