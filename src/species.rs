@@ -451,7 +451,8 @@ mod tests {
 
     #[test]
     fn every_bad_value_names_its_field() {
-        let cases: Vec<(&str, Box<dyn Fn(&mut Species)>)> = vec![
+        type Mutation = Box<dyn Fn(&mut Species)>;
+        let cases: Vec<(&str, Mutation)> = vec![
             ("grid_resolution", Box::new(|s| s.grid_resolution = 8)),
             ("grid_resolution", Box::new(|s| s.grid_resolution = 1024)),
             ("viscosity", Box::new(|s| s.viscosity = -1.0)),

@@ -160,6 +160,24 @@ fn report(runs: &[Run], o: &Options) {
         let (a, b) = (final_distance(st) / diameter, final_distance(un) / diameter);
         println!("{f:8.2}  {a:10.3}  {b:10.3}  {:7.2}", a / b);
     }
+    let staggered: Vec<(f32, f32)> = FREQUENCIES
+        .iter()
+        .filter_map(|f| find(*f, 1.0).map(|r| (*f, final_distance(r))))
+        .collect();
+    if let (Some(peak), Some(low), Some(high)) = (
+        staggered.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1)),
+        staggered.first(),
+        staggered.last(),
+    ) {
+        println!(
+            "staggered peak at {} Hz: {:.2}x the {} Hz end, {:.2}x the {} Hz end",
+            peak.0,
+            peak.1 / low.1,
+            low.0,
+            peak.1 / high.1,
+            high.0
+        );
+    }
     let recoveries: u32 = runs.iter().map(|r| r.recoveries).sum();
     println!("blow-ups recovered: {recoveries}");
 

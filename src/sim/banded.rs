@@ -62,18 +62,16 @@ impl BandedSpd {
         }
         // Forward: L y = rhs.
         for i in 0..n {
-            let mut sum = rhs[i];
-            for k in i.saturating_sub(b)..i {
-                sum -= self.lower[i * w + (i - k)] * rhs[k];
-            }
-            rhs[i] = sum / self.lower[i * w];
+            let first = i.saturating_sub(b);
+            let row = &self.lower[i * w..i * w + w];
+            let sum = (first..i).fold(rhs[i], |sum, k| sum - row[i - k] * rhs[k]);
+            rhs[i] = sum / row[0];
         }
         // Backward: Lᵀ x = y.
         for i in (0..n).rev() {
-            let mut sum = rhs[i];
-            for k in i + 1..(i + b + 1).min(n) {
-                sum -= self.lower[k * w + (k - i)] * rhs[k];
-            }
+            let last = (i + b + 1).min(n);
+            let sum =
+                (i + 1..last).fold(rhs[i], |sum, k| sum - self.lower[k * w + (k - i)] * rhs[k]);
             rhs[i] = sum / self.lower[i * w];
         }
         true

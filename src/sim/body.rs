@@ -550,13 +550,14 @@ impl Solver {
                 for q in 0..=p {
                     let (gp, gq) = (c.grad[p].to_array(), c.grad[q].to_array());
                     let (op, oq) = (self.order[c.idx[p]], self.order[c.idx[q]]);
-                    for a in 0..2 {
-                        for b in 0..2 {
+                    for (a, ga) in gp.iter().enumerate() {
+                        for (b, gb) in gq.iter().enumerate() {
+                            // A point's own 2×2 block is symmetric: give each entry once.
                             if p == q && b > a {
                                 continue;
                             }
                             self.matrix
-                                .add(2 * op + a, 2 * oq + b, k * (gp[a] * gq[b]) as f64);
+                                .add(2 * op + a, 2 * oq + b, k * (ga * gb) as f64);
                         }
                     }
                 }
@@ -669,9 +670,6 @@ mod tests {
     fn relaxed_muscles_hold_the_rest_shape() {
         let mut b = body();
         let rest = b.points.clone();
-        for p in &mut b.points {
-            *p = *p * 1.0;
-        }
         for m in &mut b.muscles {
             m.rest = 0.56 * m.relaxed;
         }

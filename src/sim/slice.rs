@@ -258,11 +258,15 @@ impl SliceSim {
     fn refresh_view(&mut self) {
         let bell = self.body.bell_points();
         let margins = [bell[0], bell[bell.len() - 1]];
-        for side in 0..2 {
-            let view = &mut self.tentacle_view[side];
+        for ((view, margin), range) in self
+            .tentacle_view
+            .iter_mut()
+            .zip(margins)
+            .zip(&self.body.tentacles)
+        {
             view.clear();
-            view.push(margins[side]);
-            view.extend_from_slice(&self.body.points[self.body.tentacles[side].clone()]);
+            view.push(margin);
+            view.extend_from_slice(&self.body.points[range.clone()]);
         }
     }
 
