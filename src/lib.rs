@@ -8,19 +8,12 @@
 //! - [`shape`]: slice to 3D surface buffers (umbrella, tentacles, variation).
 //! - `plugin` (feature `bevy`): the ECS plugin.
 
-#[cfg(feature = "bevy")]
-pub mod plugin;
 pub mod shape;
 pub mod sim;
 pub mod species;
 
 pub use sim::{SliceSim, SliceView};
 pub use species::{Species, SpeciesError};
-#[cfg(feature = "bevy")]
-pub use plugin::{
-    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, JellyfishSystems,
-    SpeciesRejected,
-};
 
 /// The README's code examples, compiled and run as doctests.
 #[cfg(doctest)]
