@@ -8,14 +8,21 @@
 //! - [`shape`]: slice to 3D surface buffers (umbrella, tentacles, variation).
 //! - `plugin` (feature `bevy`): the ECS plugin.
 
+#[cfg(feature = "bevy")]
+pub mod plugin;
 pub mod shape;
 pub mod sim;
 pub mod species;
 
+#[cfg(feature = "bevy")]
+pub use plugin::{
+    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, JellyfishSystems,
+    SpeciesRejected,
+};
 pub use sim::{SliceSim, SliceView};
 pub use species::{Species, SpeciesError};
 
-/// The README's code examples, compiled and run as doctests.
-#[cfg(doctest)]
+/// The README's code examples, compiled and run as doctests (they include a Bevy app).
+#[cfg(all(doctest, feature = "bevy"))]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

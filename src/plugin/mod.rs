@@ -33,7 +33,7 @@ mod step;
 pub use asset::{SpeciesLoader, SpeciesRejected};
 pub use components::{Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, SwimMotion};
 pub use diagnostics::JellyfishDiagnostics;
-pub use material::JellyfishMaterials;
+pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
 pub use settings::JellyfishSettings;
 
 use bevy::asset::{AssetEventSystems, AssetTrackingSystems};

@@ -1,0 +1,213 @@
+//! The components of one jellyfish. Spawn [`Jellyfish`]; the rest is required by it.
+
+use crate::shape::{JellyMesh, Resolution};
+use crate::sim::{SliceSim, SliceView};
+use crate::species::Species;
+use bevy::math::Vec2;
+use bevy::prelude::*;
+
+/// A jellyfish of a species. One line spawns one:
+/// `commands.spawn((Jellyfish::new(species), Transform::from_xyz(0.0, 1.0, 0.0)))`.
+///
+/// It swims along its local +Y axis, scaled by its `Transform::scale` (the mesh is in
+/// metres). Rotate it to steer.
+#[derive(Component, Clone, Debug, Reflect)]
+#[reflect(Component)]
+#[require(Transform, Visibility, JellyfishSlice, SwimMotion, JellyfishMeshes)]
+pub struct Jellyfish {
+    pub species: Handle<Species>,
+    /// Picks the individual's surface noise; `None` derives one from the entity.
+    pub seed: Option<u32>,
+    /// Where in its stroke it starts, in cycles [0, 1); `None` derives one from the seed,
+    /// so a school spawned together does not beat in unison.
+    pub phase: Option<f32>,
+}
+
+impl Jellyfish {
+    pub fn new(species: Handle<Species>) -> Self {
+        Self {
+            species,
+            seed: None,
+            phase: None,
+        }
+    }
+
+    pub fn with_seed(mut self, seed: u32) -> Self {
+        self.seed = Some(seed);
+        self
+    }
+
+    pub fn with_phase(mut self, phase: f32) -> Self {
+        self.phase = Some(phase);
+        self
+    }
+
+    /// The seed, explicit or derived from the entity (stable within an app).
+    pub fn seed_for(&self, entity: Entity) -> u32 {
+        self.seed.unwrap_or_else(|| hash(entity.index_u32()))
+    }
+
+    /// The phase, explicit or derived from the seed.
+    pub fn phase_for(&self, seed: u32) -> f32 {
+        self.phase
+            .unwrap_or_else(|| hash(seed ^ 0x9e37_79b9) as f32 / u32::MAX as f32)
+            .rem_euclid(1.0)
+    }
+}
+
+/// A small integer hash (lowbias32), so neighbouring entities get unrelated seeds.
+fn hash(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^ (x >> 16)
+}
+
+/// The simulated slice and its last two steps, which frames blend between.
+///
+/// Empty until the species asset has loaded.
+#[derive(Component, Default)]
+pub struct JellyfishSlice {
+    pub(crate) sim: Option<SliceSim>,
+    /// The species as simulated (after [`JellyfishSettings`](super::JellyfishSettings)).
+    pub(crate) species: Species,
+    pub(crate) seed: u32,
+    /// Fixed ticks since the last step.
+    pub(crate) ticks: u32,
+    pub(crate) previous: Snapshot,
+    pub(crate) current: Snapshot,
+}
+
+impl JellyfishSlice {
+    /// The slice, once its species has loaded (for debug overlays and tools).
+    pub fn sim(&self) -> Option<&SliceSim> {
+        self.sim.as_ref()
+    }
+
+    /// The species the slice runs with: the last valid one it was given.
+    pub fn species(&self) -> Option<&Species> {
+        self.sim.as_ref().map(|_| &self.species)
+    }
+
+    pub fn seed(&self) -> u32 {
+        self.seed
+    }
+
+    /// Swim distance after the last step, m.
+    pub fn swim_distance(&self) -> f32 {
+        self.current.swim
+    }
+
+    /// A domain point of the current step in the mesh's local frame (metres, origin at the
+    /// bell's centroid): for overlays drawn over the jellyfish.
+    pub fn to_local(&self, p: Vec2) -> Vec3 {
+        (p - self.current.centroid).extend(0.0)
+    }
+
+    /// How far the frame is from the previous step to the current one, in [0, 1).
+    pub(crate) fn blend(&self, ticks_per_step: u32, overstep_fraction: f32) -> f32 {
+        ((self.ticks as f32 + overstep_fraction) / ticks_per_step as f32).clamp(0.0, 1.0)
+    }
+
+    pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32, ticks: u32) {
+        self.current.capture(&sim);
+        self.previous.clone_from(&self.current);
+        self.sim = Some(sim);
+        self.species = species;
+        self.seed = seed;
+        self.ticks = ticks;
+    }
+}
+
+/// One step's slice, relative to the bell's centroid so that recentring never shows.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Snapshot {
+    pub bell: Vec<Vec2>,
+    pub tentacles: [Vec<Vec2>; 2],
+    pub centroid: Vec2,
+    pub swim: f32,
+    pub time: f32,
+}
+
+impl Snapshot {
+    pub fn capture(&mut self, sim: &SliceSim) {
+        let view = sim.view();
+        let c = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
+        self.centroid = c;
+        self.bell.clear();
+        self.bell.extend(view.bell.iter().map(|p| *p - c));
+        for (out, chain) in self.tentacles.iter_mut().zip(view.tentacles) {
+            out.clear();
+            out.extend(chain.iter().map(|p| *p - c));
+        }
+        self.swim = sim.swim_distance();
+        self.time = sim.time();
+    }
+
+    /// `self = a + t·(b − a)`, point by point; `b` alone where the shapes differ.
+    pub fn blend(&mut self, a: &Snapshot, b: &Snapshot, t: f32) {
+        let lerp = |out: &mut Vec<Vec2>, a: &[Vec2], b: &[Vec2]| {
+            out.clear();
+            if a.len() == b.len() {
+                out.extend(a.iter().zip(b).map(|(a, b)| a.lerp(*b, t)));
+            } else {
+                out.extend_from_slice(b);
+            }
+        };
+        lerp(&mut self.bell, &a.bell, &b.bell);
+        for side in 0..2 {
+            lerp(
+                &mut self.tentacles[side],
+                &a.tentacles[side],
+                &b.tentacles[side],
+            );
+        }
+        self.centroid = Vec2::ZERO;
+        self.swim = a.swim + t * (b.swim - a.swim);
+        self.time = a.time + t * (b.time - a.time);
+    }
+
+    pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {
+        SliceView {
+            bell: &self.bell,
+            rest_bell,
+            tentacles: [&self.tentacles[0], &self.tentacles[1]],
+        }
+    }
+}
+
+/// Where the plugin last put the jellyfish, so that moving or rotating it yourself
+/// (steering) is kept: swimming then continues from there.
+#[derive(Component, Clone, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct SwimMotion {
+    /// Translation at swim distance zero, along the current axis.
+    pub anchor: Vec3,
+    /// Blended swim distance last written, m.
+    pub distance: f32,
+    #[reflect(ignore)]
+    pub(crate) written: Option<Transform>,
+}
+
+/// The jellyfish's mesh assets and the buffers they are rebuilt from.
+///
+/// The umbrella is the jellyfish entity's own `Mesh3d`; all tentacles are one mesh on a
+/// child ([`JellyfishTentacles`]). Despawning drops the handles, which frees the meshes.
+#[derive(Component, Default)]
+pub struct JellyfishMeshes {
+    pub umbrella: Option<Handle<Mesh>>,
+    pub tentacles: Option<Handle<Mesh>>,
+    pub tentacle_entity: Option<Entity>,
+    pub(crate) buffers: JellyMesh,
+    pub(crate) blended: Snapshot,
+    /// The topology the mesh assets were written with.
+    pub(crate) written: Option<Resolution>,
+    /// Buffers hold a frame not yet copied to the assets.
+    pub(crate) dirty: bool,
+}
+
+/// Marks the child entity holding a jellyfish's tentacle mesh.
+#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct JellyfishTentacles;

@@ -1,0 +1,62 @@
+//! Simulation and meshing time per frame as Bevy diagnostics.
+
+use super::components::JellyfishSlice;
+use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
+use bevy::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Duration;
+
+/// The plugin's diagnostic paths. Times are CPU milliseconds per frame summed over all
+/// jellyfish (systems run in parallel, so wall time is lower on several cores); divide
+/// by [`Self::COUNT`] for the cost of one.
+pub struct JellyfishDiagnostics;
+
+impl JellyfishDiagnostics {
+    /// Slice stepping, all fixed ticks of the frame, ms.
+    pub const SIMULATION: DiagnosticPath = DiagnosticPath::const_new("jellyfish/simulation_ms");
+    /// Mesh rebuilding and upload to the mesh assets, ms.
+    pub const MESHING: DiagnosticPath = DiagnosticPath::const_new("jellyfish/meshing_ms");
+    /// Jellyfish with a running slice.
+    pub const COUNT: DiagnosticPath = DiagnosticPath::const_new("jellyfish/count");
+}
+
+/// Time accumulated by the parallel systems during a frame (atomics, so any thread adds).
+#[derive(Resource, Default)]
+pub(crate) struct JellyfishTimings {
+    simulation_ns: AtomicU64,
+    meshing_ns: AtomicU64,
+}
+
+impl JellyfishTimings {
+    pub fn add_simulation(&self, d: Duration) {
+        self.simulation_ns
+            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
+    }
+
+    pub fn add_meshing(&self, d: Duration) {
+        self.meshing_ns
+            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
+    }
+}
+
+pub(super) fn plugin(app: &mut App) {
+    app.init_resource::<JellyfishTimings>()
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::SIMULATION).with_suffix(" ms"))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESHING).with_suffix(" ms"))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
+        .add_systems(Last, record);
+}
+
+fn record(
+    mut diagnostics: Diagnostics,
+    timings: Res<JellyfishTimings>,
+    slices: Query<&JellyfishSlice>,
+) {
+    let ms = |ns: &AtomicU64| ns.swap(0, Ordering::Relaxed) as f64 * 1e-6;
+    let (simulation, meshing) = (ms(&timings.simulation_ns), ms(&timings.meshing_ns));
+    diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || simulation);
+    diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || meshing);
+    diagnostics.add_measurement(&JellyfishDiagnostics::COUNT, || {
+        slices.iter().filter(|s| s.sim().is_some()).count() as f64
+    });
+}

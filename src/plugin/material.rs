@@ -1,0 +1,133 @@
+//! The jellyfish material: translucent, with a fresnel rim and the species' glow.
+//!
+//! Only where the app renders (`Assets<StandardMaterial>` exists): headless apps and tests
+//! run without it. One material pair per species, updated in place when it is edited.
+//! A jellyfish that already has a `MeshMaterial3d<StandardMaterial>` keeps its own.
+
+use super::JellyfishSystems;
+use super::components::{Jellyfish, JellyfishMeshes, JellyfishTentacles};
+use crate::species::Species;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+
+/// The materials made for each species.
+#[derive(Resource, Default)]
+pub struct JellyfishMaterials {
+    pub by_species: HashMap<AssetId<Species>, SpeciesMaterials>,
+}
+
+#[derive(Clone, Debug)]
+pub struct SpeciesMaterials {
+    pub bell: Handle<StandardMaterial>,
+    pub tentacles: Handle<StandardMaterial>,
+}
+
+pub(super) fn plugin(app: &mut App) {
+    app.init_resource::<JellyfishMaterials>().add_systems(
+        PostUpdate,
+        (update_materials, assign_materials)
+            .chain()
+            .after(JellyfishSystems::RebuildMeshes)
+            .run_if(resource_exists::<Assets<StandardMaterial>>),
+    );
+}
+
+/// The bell: alpha-blended and double-sided (the subumbrella shows through), a high
+/// reflectance and a clear coat so grazing angles brighten (a fresnel rim), and the
+/// species' glow as emission.
+pub fn bell_material(species: &Species) -> StandardMaterial {
+    let [r, g, b, a] = species.bell_color;
+    let [er, eg, eb] = species.glow_color;
+    StandardMaterial {
+        base_color: Color::linear_rgba(r, g, b, a),
+        emissive: LinearRgba::rgb(er, eg, eb) * species.glow,
+        alpha_mode: AlphaMode::Blend,
+        double_sided: true,
+        cull_mode: None,
+        perceptual_roughness: 0.3,
+        reflectance: 0.8,
+        clearcoat: 1.0,
+        clearcoat_perceptual_roughness: 0.15,
+        ..default()
+    }
+}
+
+/// Tentacles: thin, so denser and brighter than the bell to stay visible.
+pub fn tentacle_material(species: &Species) -> StandardMaterial {
+    let mut m = bell_material(species);
+    m.base_color
+        .set_alpha((species.bell_color[3] * 1.8).min(1.0));
+    m.emissive *= 1.5;
+    m
+}
+
+fn update_materials(
+    mut events: MessageReader<AssetEvent<Species>>,
+    species: Res<Assets<Species>>,
+    mut cache: ResMut<JellyfishMaterials>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    for event in events.read() {
+        match event {
+            AssetEvent::Modified { id } => {
+                let (Some(s), Some(m)) = (species.get(*id), cache.by_species.get(id)) else {
+                    continue;
+                };
+                if s.validate().is_err() {
+                    continue;
+                }
+                if let Some(mut bell) = materials.get_mut(&m.bell) {
+                    *bell = bell_material(s);
+                }
+                if let Some(mut tentacles) = materials.get_mut(&m.tentacles) {
+                    *tentacles = tentacle_material(s);
+                }
+            }
+            AssetEvent::Removed { id } | AssetEvent::Unused { id } => {
+                cache.by_species.remove(id);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Entities with `T` that have no material yet.
+type WithoutMaterial<T> = (With<T>, Without<MeshMaterial3d<StandardMaterial>>);
+
+fn assign_materials(
+    mut commands: Commands,
+    bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<StandardMaterial>>>,
+    tentacles: Query<(Entity, &ChildOf), WithoutMaterial<JellyfishTentacles>>,
+    parents: Query<&Jellyfish>,
+    species: Res<Assets<Species>>,
+    mut cache: ResMut<JellyfishMaterials>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let mut get = |handle: &Handle<Species>| -> Option<SpeciesMaterials> {
+        let s = species.get(handle)?;
+        Some(
+            cache
+                .by_species
+                .entry(handle.id())
+                .or_insert_with(|| SpeciesMaterials {
+                    bell: materials.add(bell_material(s)),
+                    tentacles: materials.add(tentacle_material(s)),
+                })
+                .clone(),
+        )
+    };
+    for (entity, jelly, meshes) in &bells {
+        if meshes.umbrella.is_some()
+            && let Some(m) = get(&jelly.species)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(m.bell));
+        }
+    }
+    for (entity, child_of) in &tentacles {
+        if let Ok(jelly) = parents.get(child_of.parent())
+            && let Some(m) = get(&jelly.species)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(m.tentacles));
+        }
+    }
+}

@@ -1,0 +1,153 @@
+//! Meshes rebuilt every frame from the slice, blended between fixed steps, written into
+//! the same mesh assets in place.
+
+use super::JellyfishSystems;
+use super::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
+use super::diagnostics::JellyfishTimings;
+use super::settings::JellyfishSettings;
+use crate::shape::{self, SurfaceBuffers};
+use crate::species::Species;
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
+use bevy::prelude::*;
+use std::time::Instant;
+
+pub(super) fn plugin(app: &mut App) {
+    app.add_systems(
+        PostUpdate,
+        (build_buffers, write_meshes)
+            .chain()
+            .in_set(JellyfishSystems::RebuildMeshes),
+    );
+}
+
+/// The CPU-heavy half, in parallel: blend the last two steps and build the surfaces.
+fn build_buffers(
+    mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes)>,
+    time: Res<Time<Fixed>>,
+    settings: Res<JellyfishSettings>,
+    timings: Res<JellyfishTimings>,
+) {
+    let ticks = settings.ticks_per_step(time.timestep());
+    let overstep = time.overstep_fraction();
+    jellyfish.par_iter_mut().for_each(|(slice, mut meshes)| {
+        let Some(sim) = slice.sim() else {
+            return;
+        };
+        let start = Instant::now();
+        let meshes = &mut *meshes;
+        let t = slice.blend(ticks, overstep);
+        meshes.blended.blend(&slice.previous, &slice.current, t);
+        let species: Species = settings.meshed(&slice.species);
+        let view = meshes.blended.view(sim.view().rest_bell);
+        match shape::build_into(
+            &mut meshes.buffers,
+            &view,
+            &species,
+            slice.seed,
+            meshes.blended.time,
+        ) {
+            Ok(()) => meshes.dirty = true,
+            Err(e) => warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}"),
+        }
+        timings.add_meshing(start.elapsed());
+    });
+}
+
+/// The serial half: copy the buffers into the mesh assets (creating them the first time).
+/// An empty surface (a species without tentacles) is hidden, never handed to Bevy.
+fn write_meshes(
+    mut commands: Commands,
+    mut jellyfish: Query<(Entity, &mut JellyfishMeshes)>,
+    mut assets: ResMut<Assets<Mesh>>,
+    timings: Res<JellyfishTimings>,
+) {
+    let start = Instant::now();
+    for (entity, mut meshes) in &mut jellyfish {
+        if !meshes.dirty {
+            continue;
+        }
+        let meshes = &mut *meshes;
+        meshes.dirty = false;
+        let topology = meshes.written != meshes.buffers.resolution();
+        meshes.written = meshes.buffers.resolution();
+        let umbrella = &meshes.buffers.umbrella;
+        match &meshes.umbrella {
+            Some(handle) => {
+                if let Some(mut mesh) = assets.get_mut(handle) {
+                    write(&mut mesh, umbrella, topology);
+                }
+            }
+            None if umbrella.vertex_count() > 0 => {
+                let handle = assets.add(new_mesh(umbrella));
+                commands.entity(entity).insert(Mesh3d(handle.clone()));
+                meshes.umbrella = Some(handle);
+            }
+            None => {}
+        }
+        let tentacles = &meshes.buffers.tentacles;
+        let visible = tentacles.vertex_count() > 0;
+        match (&meshes.tentacles, meshes.tentacle_entity) {
+            (Some(handle), Some(child)) => {
+                if visible && let Some(mut mesh) = assets.get_mut(handle) {
+                    write(&mut mesh, tentacles, topology);
+                }
+                let visibility = if visible {
+                    Visibility::Inherited
+                } else {
+                    Visibility::Hidden
+                };
+                if topology {
+                    commands.entity(child).insert(visibility);
+                }
+            }
+            _ if visible => {
+                let handle = assets.add(new_mesh(tentacles));
+                let child = commands
+                    .spawn((
+                        JellyfishTentacles,
+                        Mesh3d(handle.clone()),
+                        Transform::default(),
+                        ChildOf(entity),
+                    ))
+                    .id();
+                meshes.tentacles = Some(handle);
+                meshes.tentacle_entity = Some(child);
+            }
+            _ => {}
+        }
+    }
+    timings.add_meshing(start.elapsed());
+}
+
+fn new_mesh(b: &SurfaceBuffers) -> Mesh {
+    let mut mesh = Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    );
+    write(&mut mesh, b, true);
+    mesh
+}
+
+/// Overwrites positions and normals in place; the whole topology only when it changed.
+fn write(mesh: &mut Mesh, b: &SurfaceBuffers, topology: bool) {
+    let in_place = !topology
+        && copy3(mesh, Mesh::ATTRIBUTE_POSITION, &b.positions)
+        && copy3(mesh, Mesh::ATTRIBUTE_NORMAL, &b.normals);
+    if !in_place {
+        mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, b.positions.clone());
+        mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals.clone());
+        mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, b.uvs.clone());
+        mesh.insert_indices(Indices::U32(b.indices.clone()));
+    }
+}
+
+fn copy3(mesh: &mut Mesh, attribute: bevy::mesh::MeshVertexAttribute, values: &[[f32; 3]]) -> bool {
+    match mesh.try_attribute_mut(attribute) {
+        Ok(VertexAttributeValues::Float32x3(v)) if v.len() == values.len() => {
+            v.copy_from_slice(values);
+            true
+        }
+        _ => false,
+    }
+}

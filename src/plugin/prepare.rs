@@ -1,0 +1,131 @@
+//! Slices for new jellyfish, and species or settings edits reaching living ones.
+
+use super::JellyfishSystems;
+use super::asset::SpeciesRejected;
+use super::components::{Jellyfish, JellyfishSlice};
+use super::settings::JellyfishSettings;
+use crate::sim::SliceSim;
+use crate::species::{Species, SpeciesError};
+use bevy::platform::collections::HashSet;
+use bevy::prelude::*;
+use bevy::utils::Parallel;
+
+pub(super) fn plugin(app: &mut App) {
+    app.add_systems(
+        PreUpdate,
+        (apply_edits, create_slices)
+            .chain()
+            .in_set(JellyfishSystems::Prepare),
+    );
+}
+
+/// Builds the slice of each jellyfish whose species has loaded, in parallel (a slice
+/// plans its fluid solver on creation). The phase offset starts the muscle clock
+/// mid-stroke; the seed staggers which fixed tick steps it, spreading the load.
+fn create_slices(
+    mut jellyfish: Query<(Entity, &Jellyfish, &mut JellyfishSlice)>,
+    species: Res<Assets<Species>>,
+    settings: Res<JellyfishSettings>,
+    time: Res<Time<Fixed>>,
+    mut edits: MessageReader<AssetEvent<Species>>,
+    mut refused: Local<Refused>,
+    mut rejected: MessageWriter<SpeciesRejected>,
+) {
+    let Refused { queue, failed } = &mut *refused;
+    // A refused species is retried only after an edit, so the error is logged once.
+    if edits.read().count() > 0 || settings.is_changed() {
+        failed.clear();
+    }
+    let ticks = settings.ticks_per_step(time.timestep());
+    jellyfish
+        .par_iter_mut()
+        .for_each(|(entity, jelly, mut slice)| {
+            if slice.sim.is_some() || failed.contains(&entity) {
+                return;
+            }
+            let Some(base) = species.get(&jelly.species) else {
+                return;
+            };
+            let simulated = settings.simulated(base);
+            match SliceSim::new(&simulated) {
+                Ok(mut sim) => {
+                    let seed = jelly.seed_for(entity);
+                    sim.set_time(jelly.phase_for(seed) * simulated.period());
+                    slice.start(sim, simulated, seed, seed % ticks);
+                }
+                Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
+            }
+        });
+    let mut reported = HashSet::new();
+    for (entity, id, error) in queue.drain() {
+        failed.insert(entity);
+        if reported.insert(id) {
+            error!("jellyfish species {id} refused: {error}");
+            rejected.write(SpeciesRejected { species: id, error });
+        }
+    }
+    failed.retain(|e| jellyfish.contains(*e));
+}
+
+/// Slices that could not be built; they are retried once a species is edited.
+#[derive(Default)]
+struct Refused {
+    queue: Parallel<Vec<(Entity, AssetId<Species>, SpeciesError)>>,
+    failed: HashSet<Entity>,
+}
+
+/// Applies edited species assets, a jellyfish's new species handle, and settings to living
+/// slices through [`SliceSim::set_species`], which refuses an invalid species before
+/// changing anything.
+fn apply_edits(
+    mut events: MessageReader<AssetEvent<Species>>,
+    mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice)>,
+    species: Res<Assets<Species>>,
+    settings: Res<JellyfishSettings>,
+    mut rejected: MessageWriter<SpeciesRejected>,
+) {
+    let edited: HashSet<AssetId<Species>> = events
+        .read()
+        .filter_map(|e| match e {
+            AssetEvent::Modified { id } => Some(*id),
+            _ => None,
+        })
+        .collect();
+    let mut reported = HashSet::new();
+    for (jelly, mut slice) in &mut jellyfish {
+        let id = jelly.species.id();
+        let swapped = jelly.is_changed() && !jelly.is_added();
+        if !edited.contains(&id) && !settings.is_changed() && !swapped {
+            continue;
+        }
+        let Some(base) = species.get(id) else {
+            continue;
+        };
+        let simulated = settings.simulated(base);
+        let slice = &mut *slice;
+        let Some(sim) = slice.sim.as_mut() else {
+            continue;
+        };
+        if simulated == slice.species {
+            continue;
+        }
+        match sim.set_species(&simulated) {
+            Ok(()) => {
+                let topology = sim.view().bell.len() != slice.current.bell.len();
+                slice.species = simulated;
+                if topology {
+                    slice.current.capture(sim);
+                    slice.previous.clone_from(&slice.current);
+                }
+            }
+            Err(error) => {
+                if reported.insert(id) {
+                    error!(
+                        "jellyfish species {id} edit refused, keeping the last valid parameters: {error}"
+                    );
+                    rejected.write(SpeciesRejected { species: id, error });
+                }
+            }
+        }
+    }
+}

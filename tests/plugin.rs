@@ -1,0 +1,570 @@
+//! The ECS plugin, headless: `MinimalPlugins` + assets + meshes + transforms, with the
+//! clock driven by hand. Slices run at grid 64 (the coarsest that swims) and meshes at a
+//! reduced resolution, so the debug build stays quick.
+
+use bevy::asset::AssetPlugin;
+use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
+use bevy::mesh::{MeshPlugin, VertexAttributeValues};
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice};
+use bevy_jellyfish::{
+    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, SliceSim, Species,
+    SpeciesRejected,
+};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+fn settings() -> JellyfishSettings {
+    JellyfishSettings {
+        grid_override: Some(64),
+        mesh_resolution_scale: 0.5,
+        ..default()
+    }
+}
+
+fn app_with(assets: AssetPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        assets,
+        MeshPlugin,
+        TransformPlugin,
+        JellyfishPlugin {
+            settings: settings(),
+        },
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(frame(60)));
+    app.finish();
+    app.cleanup();
+    app
+}
+
+fn app() -> App {
+    app_with(AssetPlugin::default())
+}
+
+fn frame(fps: u32) -> Duration {
+    Duration::from_secs_f64(1.0 / fps as f64)
+}
+
+fn set_frame(app: &mut App, d: Duration) {
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(d));
+}
+
+fn run(app: &mut App, frames: usize) {
+    for _ in 0..frames {
+        app.update();
+    }
+}
+
+/// Aurelia with a lighter mesh (8 tentacles) for the debug build.
+fn species() -> Species {
+    Species {
+        tentacle_count: 8,
+        ..Species::aurelia()
+    }
+}
+
+fn add_species(app: &mut App, s: Species) -> Handle<Species> {
+    app.world_mut().resource_mut::<Assets<Species>>().add(s)
+}
+
+fn slice(app: &App, e: Entity) -> &JellyfishSlice {
+    app.world().get::<JellyfishSlice>(e).unwrap()
+}
+
+fn umbrella_positions(app: &App, e: Entity) -> Vec<[f32; 3]> {
+    let meshes = app.world().get::<JellyfishMeshes>(e).unwrap();
+    let handle = meshes.umbrella.as_ref().expect("umbrella mesh built");
+    let mesh = app.world().resource::<Assets<Mesh>>().get(handle).unwrap();
+    match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
+        other => panic!("positions: {other:?}"),
+    }
+}
+
+fn rejections(app: &mut App) -> Vec<SpeciesRejected> {
+    app.world_mut()
+        .resource_mut::<Messages<SpeciesRejected>>()
+        .drain()
+        .collect()
+}
+
+#[test]
+fn a_spawned_jellyfish_swims_along_its_axis() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    // Lying on its side, apex towards −x, ten times life size.
+    let start = Transform::from_xyz(1.0, 2.0, 3.0)
+        .with_rotation(Quat::from_rotation_z(std::f32::consts::FRAC_PI_2))
+        .with_scale(Vec3::splat(10.0));
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h).with_phase(0.0), start))
+        .id();
+    run(&mut app, 240); // 4 s: nearly three strokes
+    let end = *app.world().get::<Transform>(e).unwrap();
+    let moved = end.translation - start.translation;
+    let swum = slice(&app, e).swim_distance();
+    assert!(swum > 0.002, "the slice swam {swum} m");
+    assert!(
+        moved.normalize().dot(Vec3::NEG_X) > 0.9999,
+        "moved along its axis: {moved}"
+    );
+    // Blended between the last two steps, so within a step of the slice's distance.
+    assert!(
+        (moved.length() / 10.0 - swum).abs() < 0.2 * swum,
+        "moved {moved}, swum {swum}"
+    );
+    assert_eq!(end.rotation, start.rotation);
+    assert_eq!(slice(&app, e).sim().unwrap().recoveries(), 0);
+}
+
+#[test]
+fn its_mesh_changes_between_frames() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h).with_phase(0.1), Transform::default()))
+        .id();
+    run(&mut app, 2);
+    let before = umbrella_positions(&app, e);
+    let handle = app.world().get::<Mesh3d>(e).unwrap().0.clone();
+    run(&mut app, 3);
+    let after = umbrella_positions(&app, e);
+    assert_eq!(before.len(), after.len());
+    assert!(!before.is_empty());
+    assert_ne!(before, after, "the bell moved");
+    assert_eq!(
+        app.world().get::<Mesh3d>(e).unwrap().0,
+        handle,
+        "updated in place, same handle"
+    );
+    let tentacles = app.world().get::<JellyfishMeshes>(e).unwrap();
+    let child = tentacles.tentacle_entity.expect("tentacle child");
+    assert_eq!(
+        app.world().get::<ChildOf>(child).unwrap().parent(),
+        e,
+        "tentacles are one child mesh"
+    );
+}
+
+#[test]
+fn seeds_pick_the_individual() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let spawn = |app: &mut App, seed| {
+        app.world_mut()
+            .spawn((
+                Jellyfish::new(h.clone()).with_seed(seed).with_phase(0.0),
+                Transform::default(),
+            ))
+            .id()
+    };
+    let (a, b, c) = (spawn(&mut app, 1), spawn(&mut app, 2), spawn(&mut app, 1));
+    run(&mut app, 3);
+    let (pa, pb, pc) = (
+        umbrella_positions(&app, a),
+        umbrella_positions(&app, b),
+        umbrella_positions(&app, c),
+    );
+    assert_ne!(pa, pb, "two seeds, two surfaces");
+    assert_eq!(pa, pc, "one seed, one surface");
+}
+
+#[test]
+fn individuals_start_at_their_own_phase() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let mut spawn = |j: Jellyfish| app.world_mut().spawn((j, Transform::default())).id();
+    let a = spawn(Jellyfish::new(h.clone()));
+    let b = spawn(Jellyfish::new(h.clone()));
+    let quarter = spawn(Jellyfish::new(h.clone()).with_phase(0.25));
+    app.update(); // slices are built; the clock has not moved yet
+    let phase = |e| slice(&app, e).sim().unwrap().phase();
+    assert_ne!(phase(a), phase(b), "a school does not beat in unison");
+    assert_ne!(slice(&app, a).seed(), slice(&app, b).seed());
+    assert!((phase(quarter) - 0.25).abs() < 1e-4, "{}", phase(quarter));
+}
+
+#[test]
+fn despawning_frees_its_mesh_assets() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h), Transform::default()))
+        .id();
+    run(&mut app, 2);
+    let meshes = app.world().get::<JellyfishMeshes>(e).unwrap();
+    let ids = [
+        meshes.umbrella.as_ref().unwrap().id(),
+        meshes.tentacles.as_ref().unwrap().id(),
+    ];
+    let child = meshes.tentacle_entity.unwrap();
+    for id in ids {
+        assert!(app.world().resource::<Assets<Mesh>>().contains(id));
+    }
+    app.world_mut().despawn(e);
+    run(&mut app, 2);
+    assert!(
+        app.world().get_entity(child).is_err(),
+        "tentacle child gone"
+    );
+    for id in ids {
+        assert!(
+            !app.world().resource::<Assets<Mesh>>().contains(id),
+            "mesh {id} freed"
+        );
+    }
+}
+
+#[test]
+fn a_species_edited_at_run_time_reaches_living_jellyfish() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), Transform::default()))
+        .id();
+    run(&mut app, 60);
+    let time = slice(&app, e).sim().unwrap().time();
+    {
+        let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
+        let mut s = assets.get_mut(&h).unwrap();
+        s.contraction_frequency = 1.1;
+        s.diameter = 0.05; // geometry: the slice rebuilds in place
+    }
+    run(&mut app, 3);
+    let sl = slice(&app, e);
+    let sim = sl.sim().unwrap();
+    assert_eq!(sim.species().contraction_frequency, 1.1);
+    assert_eq!(sim.species().diameter, 0.05);
+    assert_eq!(sl.species().unwrap().diameter, 0.05);
+    assert_eq!(sim.species().grid_resolution, 64, "settings still apply");
+    assert!(sim.time() > time, "kept its clock");
+    run(&mut app, 3);
+    assert!(!umbrella_positions(&app, e).is_empty());
+}
+
+#[test]
+fn a_new_species_handle_reaches_the_jellyfish() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let other = add_species(
+        &mut app,
+        Species {
+            name: "Other".into(),
+            contraction_frequency: 0.5,
+            ..species()
+        },
+    );
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h), Transform::default()))
+        .id();
+    run(&mut app, 5);
+    app.world_mut().get_mut::<Jellyfish>(e).unwrap().species = other;
+    run(&mut app, 2);
+    assert_eq!(slice(&app, e).sim().unwrap().species().name, "Other");
+}
+
+#[test]
+fn an_invalid_edit_is_refused_and_jellyfish_keep_the_last_valid_species() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), Transform::default()))
+        .id();
+    run(&mut app, 10);
+    rejections(&mut app);
+    app.world_mut()
+        .resource_mut::<Assets<Species>>()
+        .get_mut(&h)
+        .unwrap()
+        .contraction_ratio = 3.0;
+    run(&mut app, 3);
+    let refused = rejections(&mut app);
+    assert_eq!(refused.len(), 1, "{refused:?}");
+    assert_eq!(refused[0].species, h.id());
+    assert_eq!(refused[0].error.field(), Some("contraction_ratio"));
+    let time = slice(&app, e).sim().unwrap().time();
+    run(&mut app, 10);
+    let sim = slice(&app, e).sim().unwrap();
+    assert_eq!(sim.species().contraction_ratio, species().contraction_ratio);
+    assert!(sim.time() > time, "still swimming");
+}
+
+/// A folder of its own for files the test rewrites.
+fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("jellyfish-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Updates (with real pauses: loading is asynchronous) until `done`.
+fn wait(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
+    for _ in 0..500 {
+        app.update();
+        if done(app) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    panic!("timed out waiting for {what}");
+}
+
+#[test]
+fn an_invalid_species_file_is_refused_naming_the_field() {
+    let dir = scratch_dir("reload");
+    let file = dir.join("test.ron");
+    std::fs::write(&file, "(name: \"Test\", tentacle_count: 8)").unwrap();
+    let mut app = app_with(AssetPlugin {
+        file_path: dir.to_string_lossy().into_owned(),
+        ..default()
+    });
+    let h: Handle<Species> = app.world().resource::<AssetServer>().load("test.ron");
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), Transform::default()))
+        .id();
+    wait(&mut app, "the slice", |app| slice(app, e).sim().is_some());
+
+    // A bad file: Bevy logs the loader's error (naming the field), we say what happens.
+    std::fs::write(&file, "(name: \"Bad\", diameter: -0.04)").unwrap();
+    app.world().resource::<AssetServer>().reload("test.ron");
+    let mut refused = Vec::new();
+    wait(&mut app, "the refusal", |app| {
+        refused.extend(rejections(app));
+        !refused.is_empty()
+    });
+    assert_eq!(refused[0].species, h.id());
+    assert_eq!(refused[0].error.field(), Some("diameter"));
+    assert!(refused[0].error.to_string().contains("diameter"));
+    run(&mut app, 3);
+    let sim = slice(&app, e).sim().unwrap();
+    assert_eq!(sim.species().name, "Test");
+    assert_eq!(sim.species().diameter, Species::aurelia().diameter);
+    assert_eq!(
+        app.world()
+            .resource::<Assets<Species>>()
+            .get(&h)
+            .unwrap()
+            .name,
+        "Test"
+    );
+
+    // A good edit of the file reaches the living jellyfish (hot reload does this on save).
+    std::fs::write(&file, "(name: \"Edited\", tentacle_count: 8, glow: 2.0)").unwrap();
+    app.world().resource::<AssetServer>().reload("test.ron");
+    wait(&mut app, "the edit", |app| {
+        slice(app, e).species().unwrap().name == "Edited"
+    });
+    assert_eq!(slice(&app, e).sim().unwrap().species().glow, 2.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+fn species_files() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn shipped_species_validate_differ_and_swim() {
+    let files = species_files();
+    let names: Vec<_> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["aequorea.ron", "aurelia.ron", "sarsia.ron"]);
+    let mut all = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        let s = Species::from_ron(&text).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        // At its own grid: a small bell needs the finer cells to swim.
+        let mut sim = SliceSim::new(&s).unwrap();
+        while sim.time() < 3.0 * s.period() {
+            sim.advance(1.0 / 32.0);
+        }
+        assert_eq!(sim.recoveries(), 0, "{}", s.name);
+        assert!(
+            sim.bell_points().iter().all(|p| p.is_finite()),
+            "{}",
+            s.name
+        );
+        assert!(
+            sim.swim_distance() > 0.1 * s.diameter,
+            "{} swam {} m in three strokes",
+            s.name,
+            sim.swim_distance()
+        );
+        all.push(s);
+    }
+    let [aequorea, aurelia, sarsia] = &all[..] else {
+        unreachable!()
+    };
+    assert_eq!(aurelia, &Species::aurelia(), "aurelia.ron is the defaults");
+    let flatness = |s: &Species| s.height / s.diameter;
+    assert!(
+        flatness(aequorea) < 0.6 * flatness(aurelia),
+        "Aequorea is flat"
+    );
+    assert!(aequorea.tentacle_count > 2 * aurelia.tentacle_count);
+    assert!(
+        aequorea.tentacle_length < 0.25 * aequorea.diameter,
+        "short tentacles"
+    );
+    assert!(flatness(sarsia) > 1.2, "Sarsia is tall");
+    assert!(sarsia.tentacle_count <= 4);
+    assert!(
+        sarsia.tentacle_length > 3.0 * sarsia.diameter,
+        "long tentacles"
+    );
+}
+
+#[test]
+fn shipped_species_load_through_the_asset_server() {
+    let mut app = app();
+    let handles: Vec<Handle<Species>> = ["aurelia", "aequorea", "sarsia"]
+        .iter()
+        .map(|n| {
+            app.world()
+                .resource::<AssetServer>()
+                .load(format!("species/{n}.ron"))
+        })
+        .collect();
+    wait(&mut app, "three species", |app| {
+        let assets = app.world().resource::<Assets<Species>>();
+        handles.iter().all(|h| assets.contains(h))
+    });
+    let assets = app.world().resource::<Assets<Species>>();
+    let names: Vec<_> = handles
+        .iter()
+        .map(|h| assets.get(h).unwrap().name.clone())
+        .collect();
+    assert_eq!(names, ["Aurelia", "Aequorea", "Sarsia"]);
+}
+
+/// Runs `frames` frames at `fps`, then one short frame so the clock reads exactly `total`.
+fn run_at(fps: u32, total: Duration) -> (Transform, f32, u64) {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((
+            Jellyfish::new(h).with_seed(7).with_phase(0.3),
+            Transform::from_xyz(0.5, 0.0, 0.0)
+                .with_rotation(Quat::from_rotation_x(0.4))
+                .with_scale(Vec3::splat(5.0)),
+        ))
+        .id();
+    let step = frame(fps);
+    let mut elapsed = Duration::ZERO;
+    set_frame(&mut app, step);
+    app.update(); // the clock's first update has no delta
+    while elapsed + step <= total {
+        app.update();
+        elapsed += step;
+    }
+    set_frame(&mut app, total - elapsed);
+    app.update();
+    let transform = *app.world().get::<Transform>(e).unwrap();
+    let sl = slice(&app, e);
+    (transform, sl.swim_distance(), sl.sim().unwrap().steps())
+}
+
+#[test]
+fn frame_rate_does_not_change_the_motion() {
+    let total = Duration::from_millis(2000);
+    let (a, da, sa) = run_at(30, total);
+    let (b, db, sb) = run_at(144, total);
+    assert!(sa > 20, "{sa} steps");
+    assert_eq!(sa, sb, "same number of steps");
+    assert_eq!(da.to_bits(), db.to_bits(), "same slice");
+    assert!(da > 0.0);
+    for (x, y) in a
+        .translation
+        .to_array()
+        .iter()
+        .zip(b.translation.to_array())
+    {
+        assert_eq!(x.to_bits(), y.to_bits(), "{a:?} vs {b:?}");
+    }
+    assert_eq!(a.rotation, b.rotation);
+}
+
+#[test]
+fn diagnostics_report_simulation_and_meshing_time() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    for i in 0..3 {
+        app.world_mut().spawn((
+            Jellyfish::new(h.clone()),
+            Transform::from_xyz(i as f32, 0.0, 0.0),
+        ));
+    }
+    run(&mut app, 10);
+    let store = app.world().resource::<DiagnosticsStore>();
+    let value = |p: &DiagnosticPath| store.get(p).and_then(|d| d.value()).unwrap();
+    assert_eq!(value(&JellyfishDiagnostics::COUNT), 3.0);
+    let sim: f64 = store
+        .get(&JellyfishDiagnostics::SIMULATION)
+        .unwrap()
+        .values()
+        .sum();
+    assert!(sim > 0.0);
+    assert!(value(&JellyfishDiagnostics::MESHING) > 0.0);
+}
+
+/// `cargo test --test plugin -- --ignored --nocapture`: cost per jellyfish per frame at
+/// grid 64 and the species' full mesh resolution, 60 frames per second.
+#[test]
+#[ignore]
+fn cost_per_jellyfish() {
+    let count = 20;
+    let mut app = app();
+    app.insert_resource(JellyfishSettings {
+        grid_override: Some(64),
+        ..default()
+    });
+    let h = add_species(&mut app, Species::aurelia());
+    for i in 0..count {
+        app.world_mut().spawn((
+            Jellyfish::new(h.clone()),
+            Transform::from_xyz(i as f32, 0.0, 0.0),
+        ));
+    }
+    run(&mut app, 30);
+    let frames = 240;
+    let (mut sim, mut mesh) = (0.0, 0.0);
+    let start = std::time::Instant::now();
+    for _ in 0..frames {
+        app.update();
+        let store = app.world().resource::<DiagnosticsStore>();
+        let value = |p: &DiagnosticPath| store.get(p).and_then(|d| d.value()).unwrap();
+        sim += value(&JellyfishDiagnostics::SIMULATION);
+        mesh += value(&JellyfishDiagnostics::MESHING);
+    }
+    let wall = start.elapsed().as_secs_f64() * 1e3 / frames as f64;
+    let per = |v: f64| v / (frames * count) as f64;
+    println!(
+        "{count} jellyfish, grid 64, 60 fps, {} profile: per jellyfish per frame \
+         simulation {:.3} ms, meshing {:.3} ms (CPU); whole frame {wall:.2} ms wall",
+        if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        },
+        per(sim),
+        per(mesh)
+    );
+}
