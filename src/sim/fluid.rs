@@ -304,12 +304,7 @@ impl Fluid {
         };
         let gx = if gx.is_finite() { gx } else { 0.0 };
         let gy = if gy.is_finite() { gy } else { 0.0 };
-        let gx = gx.clamp(0.0, (nx - 1) as f32);
-        let gy = gy.clamp(0.0, (ny - 1) as f32);
-        let i0 = (gx as usize).min(nx - 2);
-        let j0 = (gy as usize).min(ny - 2);
-        let fx = gx - i0 as f32;
-        let fy = gy - j0 as f32;
+        let (i0, j0, fx, fy) = locate(nx, ny, gx, gy);
         let at = |i: usize, j: usize| j * nx + i;
         [
             (at(i0, j0), (1.0 - fx) * (1.0 - fy)),
@@ -449,15 +444,23 @@ fn semi_lagrangian(
     }
 }
 
-/// A bilinear sample (clamped to the edges: free slip for the tangential component), also returning the smallest and largest of the four corners.
+/// The lower-left corner and the fractions of a point `(x, y)` (fractional indices) in an
+/// `nx × ny` array, clamped to the edges: zero normal gradient, free slip for the
+/// tangential component.
 #[inline]
-fn bilinear_bounded(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> (f32, f32, f32) {
+fn locate(nx: usize, ny: usize, x: f32, y: f32) -> (usize, usize, f32, f32) {
     let x = x.clamp(0.0, (nx - 1) as f32);
     let y = y.clamp(0.0, (ny - 1) as f32);
+    // Non-negative after the clamp, so truncation is floor (and NaN becomes 0).
     let i = (x as usize).min(nx - 2);
     let j = (y as usize).min(ny - 2);
-    let fx = x - i as f32;
-    let fy = y - j as f32;
+    (i, j, x - i as f32, y - j as f32)
+}
+
+/// A bilinear sample, also returning the smallest and largest of the four corners.
+#[inline]
+fn bilinear_bounded(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> (f32, f32, f32) {
+    let (i, j, fx, fy) = locate(nx, ny, x, y);
     let row0 = j * nx + i;
     let row1 = row0 + nx;
     let (a0, a1, b0, b1) = (field[row0], field[row0 + 1], field[row1], field[row1 + 1]);
