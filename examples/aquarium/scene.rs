@@ -1,0 +1,30 @@
+//! The whole aquarium as one plugin, shared by the windowed app, offscreen pictures and
+//! the render test.
+
+use crate::school::School;
+use bevy::prelude::*;
+use bevy_jellyfish::{JellyfishPlugin, JellyfishSettings};
+
+pub struct AquariumPlugin {
+    pub school: School,
+}
+
+impl Plugin for AquariumPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins(JellyfishPlugin {
+            settings: JellyfishSettings {
+                // The aquarium's resolution: a school at a frame rate.
+                grid_override: Some(64),
+                ..default()
+            },
+        })
+        .insert_resource(self.school)
+        .add_plugins((
+            crate::tank::plugin,
+            crate::snow::plugin,
+            crate::school::plugin,
+            crate::camera::plugin,
+            crate::stats::plugin,
+        ));
+    }
+}

@@ -1,0 +1,190 @@
+//! The schools: `count` jellyfish of each shipped species, placed without overlap, each
+//! with its own seed and phase, kept in the tank by steering.
+//!
+//! The plugin swims each jellyfish along its local +Y axis and keeps rotations set by
+//! others, so steering is a gentle turn of that axis: away from the walls, the floor, the
+//! surface and close neighbours, plus a slow wander of its own.
+
+use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
+use bevy::prelude::*;
+use bevy_jellyfish::{Jellyfish, Species};
+
+/// Scene units per metre: a 40 mm moon jelly is 1.2 units across.
+pub const SCALE: f32 = 30.0;
+/// The species shipped in `assets/species/`, with a radius that keeps neighbours apart
+/// (bell and tentacles, scene units).
+pub const SPECIES: [(&str, f32); 3] = [("aurelia", 0.9), ("aequorea", 1.1), ("sarsia", 1.0)];
+/// Steering starts this far from a wall, scene units.
+const MARGIN: f32 = 2.0;
+/// Below and above these heights jellyfish turn away from the floor (felt early: the
+/// tentacles hang a body length below the bell) and from the surface; they start between.
+const FLOOR_ZONE: f32 = 3.0;
+const SURFACE_ZONE: f32 = 2.5;
+/// Turn rate, rad/s: gentle when wandering, firmer near walls.
+const WANDER_TURN: f32 = 0.25;
+const WALL_TURN: f32 = 0.9;
+
+/// How many jellyfish of each species; changing it respawns the schools.
+#[derive(Resource, Clone, Copy, Debug)]
+pub struct School {
+    pub per_species: usize,
+    pub seed: u32,
+}
+
+/// One member of a school, with its own wander.
+#[derive(Component)]
+pub struct Swimmer {
+    radius: f32,
+    wander: Vec3,
+}
+
+pub fn plugin(app: &mut App) {
+    app.add_systems(
+        Update,
+        (respawn.run_if(resource_changed::<School>), steer).chain(),
+    );
+}
+
+/// A small deterministic generator (PCG-style), so a seed gives the same aquarium.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u32(&mut self) -> u32 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 32) as u32
+    }
+
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 / (1 << 24) as f32
+    }
+
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// Where jellyfish may be placed: clear of the walls, the floor and the surface.
+fn place(rng: &mut Rng) -> Vec3 {
+    Vec3::new(
+        rng.range(-HALF_WIDTH + 1.5, HALF_WIDTH - 1.5),
+        rng.range(FLOOR_ZONE, SURFACE - SURFACE_ZONE),
+        rng.range(-HALF_DEPTH + 1.5, HALF_DEPTH - 1.5),
+    )
+}
+
+/// Rejection sampling: each new jellyfish is at least the sum of the two radii away from
+/// every other; after many failures the spacing is relaxed a little.
+pub fn positions(radii: &[f32], rng: &mut Rng) -> Vec<Vec3> {
+    let mut placed: Vec<Vec3> = Vec::with_capacity(radii.len());
+    for &r in radii {
+        let mut spacing = 1.0;
+        let p = 'search: loop {
+            for _ in 0..300 {
+                let p = place(rng);
+                if placed
+                    .iter()
+                    .zip(radii)
+                    .all(|(q, rq)| p.distance(*q) >= spacing * (r + rq))
+                {
+                    break 'search p;
+                }
+            }
+            spacing *= 0.9;
+        };
+        placed.push(p);
+    }
+    placed
+}
+
+fn respawn(
+    mut commands: Commands,
+    school: Res<School>,
+    assets: Res<AssetServer>,
+    existing: Query<Entity, With<Swimmer>>,
+) {
+    for e in &existing {
+        commands.entity(e).despawn();
+    }
+    let mut rng = Rng(u64::from(school.seed) << 1 | 1);
+    let members: Vec<(&str, f32)> = SPECIES
+        .iter()
+        .flat_map(|s| std::iter::repeat_n(*s, school.per_species))
+        .collect();
+    let radii: Vec<f32> = members.iter().map(|(_, r)| *r).collect();
+    for ((name, radius), at) in members.iter().zip(positions(&radii, &mut rng)) {
+        let species: Handle<Species> = assets.load(format!("species/{name}.ron"));
+        // Mostly upright, leaning up to ~25 degrees in a random direction.
+        let lean = Quat::from_rotation_y(rng.range(0.0, std::f32::consts::TAU))
+            * Quat::from_rotation_x(rng.range(0.0, 0.45));
+        commands.spawn((
+            Jellyfish::new(species)
+                .with_seed(rng.next_u32())
+                .with_phase(rng.unit()),
+            Swimmer {
+                radius: *radius,
+                wander: Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 100.0,
+            },
+            Transform::from_translation(at)
+                .with_rotation(lean)
+                .with_scale(Vec3::splat(SCALE)),
+        ));
+    }
+    info!(
+        "{} jellyfish: {} of each of {}",
+        members.len(),
+        school.per_species,
+        SPECIES.map(|s| s.0).join(", ")
+    );
+}
+
+/// How strongly the walls push at `p`: zero beyond the margin, one at the wall, per axis.
+fn wall_push(p: Vec3) -> Vec3 {
+    let near = |d: f32| ((MARGIN - d) / MARGIN).clamp(0.0, 1.5);
+    Vec3::new(
+        near(HALF_WIDTH + p.x) - near(HALF_WIDTH - p.x),
+        near(p.y - (FLOOR_ZONE - MARGIN)) - near(SURFACE - SURFACE_ZONE + MARGIN - p.y),
+        near(HALF_DEPTH + p.z) - near(HALF_DEPTH - p.z),
+    )
+}
+
+/// Turns each jellyfish's swimming axis towards where it wants to go: a slowly wandering
+/// heading (biased upwards, as jellyfish mostly swim), bent away from walls and neighbours.
+fn steer(time: Res<Time>, mut swimmers: Query<(&Swimmer, &mut Transform)>) {
+    let (t, dt) = (time.elapsed_secs(), time.delta_secs());
+    let all: Vec<(Vec3, f32)> = swimmers
+        .iter()
+        .map(|(s, tf)| (tf.translation, s.radius))
+        .collect();
+    for (swimmer, mut transform) in &mut swimmers {
+        let p = transform.translation;
+        let w = swimmer.wander;
+        let heading = Vec3::new(
+            0.6 * (0.11 * t + w.x).sin(),
+            1.2 + 0.5 * (0.07 * t + w.y).sin(),
+            0.6 * (0.09 * t + w.z).cos(),
+        );
+        let mut push = wall_push(p);
+        for (q, rq) in &all {
+            let d = p - *q;
+            let reach = 1.3 * (swimmer.radius + rq);
+            let len = d.length();
+            if len > 1e-4 && len < reach {
+                push += d / len * (1.0 - len / reach);
+            }
+        }
+        let desired = (heading.normalize() + 3.0 * push).normalize_or(Vec3::Y);
+        let axis = transform.rotation * Vec3::Y;
+        let angle = axis.angle_between(desired);
+        if angle < 1e-4 {
+            continue;
+        }
+        let rate = WANDER_TURN + (WALL_TURN - WANDER_TURN) * push.length().min(1.0);
+        let turn = Quat::from_rotation_arc(axis, desired);
+        let step = Quat::IDENTITY.slerp(turn, (rate * dt / angle).min(1.0));
+        transform.rotation = (step * transform.rotation).normalize();
+    }
+}

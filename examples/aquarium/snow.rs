@@ -1,0 +1,61 @@
+//! Marine snow: a few hundred small pale flecks sinking slowly and drifting, moved on the
+//! CPU. One mesh and one material for all, so Bevy draws them as one batch.
+
+use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
+use bevy::prelude::*;
+
+const FLAKES: usize = 500;
+/// The volume the flakes fill: the tank and some water in front of it, towards the camera.
+const MIN: Vec3 = Vec3::new(-HALF_WIDTH - 3.0, 0.0, -HALF_DEPTH - 2.0);
+const MAX: Vec3 = Vec3::new(HALF_WIDTH + 3.0, SURFACE, HALF_DEPTH + 4.0);
+
+pub fn plugin(app: &mut App) {
+    app.add_systems(Startup, setup).add_systems(Update, drift);
+}
+
+#[derive(Component)]
+struct Flake {
+    sink: f32,
+    phase: f32,
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let mesh = meshes.add(Sphere::new(0.02).mesh().ico(0).expect("ico sphere"));
+    let material = materials.add(StandardMaterial {
+        base_color: Color::srgb(0.75, 0.85, 0.9),
+        emissive: LinearRgba::rgb(0.3, 0.4, 0.45),
+        unlit: true,
+        ..default()
+    });
+    let mut rng = crate::school::Rng(0x5eed);
+    for _ in 0..FLAKES {
+        let at = MIN + (MAX - MIN) * Vec3::new(rng.unit(), rng.unit(), rng.unit());
+        let size = 0.5 + rng.unit();
+        commands.spawn((
+            Mesh3d(mesh.clone()),
+            MeshMaterial3d(material.clone()),
+            Transform::from_translation(at).with_scale(Vec3::splat(size)),
+            Flake {
+                sink: 0.04 + 0.08 * rng.unit(),
+                phase: rng.unit() * std::f32::consts::TAU,
+            },
+        ));
+    }
+}
+
+fn drift(time: Res<Time>, mut flakes: Query<(&Flake, &mut Transform)>) {
+    let (t, dt) = (time.elapsed_secs(), time.delta_secs());
+    flakes.par_iter_mut().for_each(|(flake, mut transform)| {
+        let p = &mut transform.translation;
+        p.y -= flake.sink * dt;
+        p.x += 0.06 * (0.3 * t + flake.phase).sin() * dt;
+        p.z += 0.05 * (0.23 * t + 2.0 * flake.phase).cos() * dt;
+        if p.y < MIN.y {
+            p.y = MAX.y;
+        }
+    });
+}

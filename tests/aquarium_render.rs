@@ -1,0 +1,231 @@
+//! The aquarium example: its schools stay in the tank (no GPU needed), and rendered
+//! offscreen, jellyfish show up in it.
+//!
+//! Rendering needs a GPU or Mesa's software Vulkan (`mesa-vulkan-drivers`). Without an adapter it
+//! says so and passes, unless `JELLYFISH_REQUIRE_RENDER=1` (set by `.ci/run` once Mesa is
+//! installed), when it fails.
+//!
+//! The scene is the example's own modules, included here.
+
+#[path = "../examples/aquarium/camera.rs"]
+mod camera;
+#[path = "../examples/aquarium/scene.rs"]
+mod scene;
+#[path = "../examples/aquarium/school.rs"]
+mod school;
+#[path = "../examples/aquarium/screenshot.rs"]
+mod screenshot;
+#[path = "../examples/aquarium/snow.rs"]
+mod snow;
+#[path = "../examples/aquarium/stats.rs"]
+mod stats;
+#[path = "../examples/aquarium/tank.rs"]
+mod tank;
+
+use bevy::diagnostic::DiagnosticsStore;
+use bevy::mesh::MeshPlugin;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
+use scene::AquariumPlugin;
+use school::School;
+use screenshot::Offscreen;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 240;
+const PER_SPECIES: usize = 2;
+
+struct Picture {
+    bytes: Vec<u8>,
+    /// Bytes per pixel: RGB or RGBA, eight bits each.
+    stride: usize,
+}
+
+impl Picture {
+    fn read(path: &Path) -> Self {
+        let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+        let mut reader = png::Decoder::new(file).read_info().unwrap();
+        let mut bytes = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut bytes).unwrap();
+        assert_eq!((info.width, info.height), (WIDTH, HEIGHT));
+        assert_eq!(info.bit_depth, png::BitDepth::Eight);
+        let stride = match info.color_type {
+            png::ColorType::Rgb => 3,
+            png::ColorType::Rgba => 4,
+            other => panic!("unexpected colour type {other:?}"),
+        };
+        bytes.truncate(info.buffer_size());
+        Self { bytes, stride }
+    }
+
+    fn pixels(&self) -> impl Iterator<Item = [i32; 3]> + '_ {
+        self.bytes
+            .chunks_exact(self.stride)
+            .map(|p| [p[0] as i32, p[1] as i32, p[2] as i32])
+    }
+
+    /// Pixels whose colour differs from `other`'s by more than a faint change.
+    fn changed_from(&self, other: &Picture) -> usize {
+        self.pixels()
+            .zip(other.pixels())
+            .filter(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).sum::<i32>() > 30)
+            .count()
+    }
+
+    fn mean_brightness(&self) -> f64 {
+        let n = (WIDTH * HEIGHT) as f64;
+        self.pixels()
+            .map(|p| (p[0] + p[1] + p[2]) as f64)
+            .sum::<f64>()
+            / (3.0 * n)
+    }
+}
+
+fn require_render() -> bool {
+    std::env::var("JELLYFISH_REQUIRE_RENDER").is_ok_and(|v| v == "1")
+}
+
+#[test]
+fn jellyfish_show_up_in_the_tank() {
+    let school = School {
+        per_species: 0,
+        seed: 3,
+    };
+    let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
+        app.add_plugins(AquariumPlugin { school });
+    }) {
+        Ok(offscreen) => offscreen,
+        Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),
+        Err(e) => {
+            eprintln!("skipping the aquarium render test: {e}");
+            return;
+        }
+    };
+    println!("rendering on {}", offscreen.adapter);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = |offscreen: &mut Offscreen, frames: usize, name: &str| {
+        for _ in 0..frames {
+            offscreen.update();
+        }
+        let path = dir.join(name);
+        offscreen.capture(&path).unwrap();
+        Picture::read(&path)
+    };
+
+    // The empty tank twice: what snow and swaying light change on their own.
+    let empty = shot(&mut offscreen, 4, "empty.png");
+    let later = shot(&mut offscreen, 8, "empty_later.png");
+    assert!(
+        empty.mean_brightness() > 8.0,
+        "the tank is lit (mean brightness {:.1} of 255)",
+        empty.mean_brightness()
+    );
+
+    offscreen.world_mut().resource_mut::<School>().per_species = PER_SPECIES;
+    let school = shot(&mut offscreen, 20, "school.png");
+    let count = offscreen
+        .world()
+        .resource::<DiagnosticsStore>()
+        .get(&JellyfishDiagnostics::COUNT)
+        .and_then(|d| d.value())
+        .unwrap_or(0.0);
+    assert_eq!(count as usize, 3 * PER_SPECIES, "jellyfish swimming");
+
+    let noise = later.changed_from(&empty);
+    let signal = school.changed_from(&later);
+    let pixels = (WIDTH * HEIGHT) as usize;
+    println!(
+        "pixels changed: {noise} by snow and light alone, {signal} with {count} jellyfish, \
+         of {pixels} (pictures in {})",
+        dir.display()
+    );
+    assert!(
+        signal > pixels / 100,
+        "jellyfish cover at least 1% of the picture: {signal} of {pixels} pixels changed"
+    );
+    assert!(
+        signal > 4 * noise.max(1),
+        "jellyfish change far more than snow and light alone: {signal} against {noise}"
+    );
+}
+
+/// A minute and a half of swimming, headless: steering keeps every bell in the tank
+/// (jellyfish swim a tank's width in well under that).
+#[test]
+fn schools_stay_in_the_tank() {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        AssetPlugin {
+            file_path: concat!(env!("CARGO_MANIFEST_DIR"), "/assets").into(),
+            ..default()
+        },
+        MeshPlugin,
+        TransformPlugin,
+        JellyfishPlugin {
+            settings: JellyfishSettings {
+                grid_override: Some(64),
+                mesh_resolution_scale: 0.25,
+                ..default()
+            },
+        },
+        school::plugin,
+    ))
+    .insert_resource(School {
+        per_species: 2,
+        seed: 11,
+    })
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+        1.0 / 30.0,
+    )));
+    app.finish();
+    app.cleanup();
+    let (mut last, mut path) = (Vec::new(), vec![0.0f32; 6]);
+    for frame in 0..30 * 90 {
+        app.update();
+        let mut jellyfish = app
+            .world_mut()
+            .query_filtered::<&Transform, With<Jellyfish>>();
+        let at: Vec<Vec3> = jellyfish.iter(app.world()).map(|t| t.translation).collect();
+        assert_eq!(at.len(), 6);
+        if frame == 0 {
+            last.clone_from(&at);
+        }
+        for ((p, p0), path) in at.iter().zip(&last).zip(&mut path) {
+            *path += p.distance(*p0);
+            let inside = p.x.abs() < tank::HALF_WIDTH + 0.5
+                && p.z.abs() < tank::HALF_DEPTH + 0.5
+                && (0.5..tank::SURFACE + 0.5).contains(&p.y);
+            assert!(inside, "frame {frame}: a jellyfish left the tank at {p}");
+        }
+        last = at;
+    }
+    let longest = path.iter().copied().fold(0.0, f32::max);
+    println!("paths swum, scene units: {path:.1?}");
+    assert!(
+        longest > tank::HALF_DEPTH,
+        "they swam far enough to meet the walls ({longest:.1} units at most)"
+    );
+}
+
+/// The default school (six of each species) is placed without overlap, inside the tank.
+#[test]
+fn schools_are_placed_apart() {
+    let radii: Vec<f32> = school::SPECIES.iter().flat_map(|(_, r)| [*r; 6]).collect();
+    for seed in 0..20 {
+        let at = school::positions(&radii, &mut school::Rng(seed));
+        for (i, (p, rp)) in at.iter().zip(&radii).enumerate() {
+            assert!(p.x.abs() < tank::HALF_WIDTH && p.z.abs() < tank::HALF_DEPTH);
+            assert!((0.0..tank::SURFACE).contains(&p.y));
+            for (q, rq) in at[..i].iter().zip(&radii) {
+                assert!(
+                    p.distance(*q) >= rp + rq,
+                    "seed {seed}: {p} and {q} overlap"
+                );
+            }
+        }
+    }
+}
