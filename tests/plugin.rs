@@ -70,6 +70,17 @@ fn add_species(app: &mut App, s: Species) -> Handle<Species> {
     app.world_mut().resource_mut::<Assets<Species>>().add(s)
 }
 
+/// An app with one jellyfish of the test species at the origin.
+fn one_jellyfish() -> (App, Handle<Species>, Entity) {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let e = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), Transform::default()))
+        .id();
+    (app, h, e)
+}
+
 fn slice(app: &App, e: Entity) -> &JellyfishSlice {
     app.world().get::<JellyfishSlice>(e).unwrap()
 }
@@ -223,12 +234,7 @@ fn despawning_frees_its_mesh_assets() {
 
 #[test]
 fn a_species_edited_at_run_time_reaches_living_jellyfish() {
-    let mut app = app();
-    let h = add_species(&mut app, species());
-    let e = app
-        .world_mut()
-        .spawn((Jellyfish::new(h.clone()), Transform::default()))
-        .id();
+    let (mut app, h, e) = one_jellyfish();
     run(&mut app, 60);
     let time = slice(&app, e).sim().unwrap().time();
     {
@@ -273,12 +279,7 @@ fn a_new_species_handle_reaches_the_jellyfish() {
 
 #[test]
 fn an_invalid_edit_is_refused_and_jellyfish_keep_the_last_valid_species() {
-    let mut app = app();
-    let h = add_species(&mut app, species());
-    let e = app
-        .world_mut()
-        .spawn((Jellyfish::new(h.clone()), Transform::default()))
-        .id();
+    let (mut app, h, e) = one_jellyfish();
     run(&mut app, 10);
     rejections(&mut app);
     app.world_mut()
