@@ -8,6 +8,7 @@ use bevy::mesh::{MeshPlugin, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice};
+use bevy_jellyfish::species::Advection;
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, SliceSim, Species,
     SpeciesRejected,
@@ -253,6 +254,25 @@ fn a_species_edited_at_run_time_reaches_living_jellyfish() {
     assert!(sim.time() > time, "kept its clock");
     run(&mut app, 3);
     assert!(!umbrella_positions(&app, e).is_empty());
+}
+
+#[test]
+fn settings_override_grid_and_advection_of_living_jellyfish() {
+    let (mut app, _, e) = one_jellyfish();
+    run(&mut app, 5);
+    let sim = slice(&app, e).sim().unwrap().species().clone();
+    assert_eq!(sim.grid_resolution, 64);
+    assert_eq!(sim.advection, Advection::SemiLagrangian);
+    app.insert_resource(JellyfishSettings {
+        grid_override: Some(48),
+        advection_override: Some(Advection::MacCormack),
+        ..settings()
+    });
+    run(&mut app, 2);
+    let sim = slice(&app, e).sim().unwrap();
+    assert_eq!(sim.species().grid_resolution, 48);
+    assert_eq!(sim.species().advection, Advection::MacCormack);
+    assert_eq!(sim.fluid().n, 48, "the fluid grid itself was rebuilt");
 }
 
 #[test]
