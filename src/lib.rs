@@ -7,13 +7,18 @@
 //!   muscles, and [`SliceSim`] that steps them together.
 //! - [`shape`]: slice to 3D surface buffers (umbrella, tentacles, variation).
 //! - `plugin` (feature `bevy`): the ECS plugin.
+//! - `editor` (feature `editor`): the in-game species editor and stats panel (egui).
 
+#[cfg(feature = "editor")]
+pub mod editor;
 #[cfg(feature = "bevy")]
 pub mod plugin;
 pub mod shape;
 pub mod sim;
 pub mod species;
 
+#[cfg(feature = "editor")]
+pub use editor::JellyfishEditorPlugin;
 #[cfg(feature = "bevy")]
 pub use plugin::{
     Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, JellyfishSystems,

@@ -1,0 +1,423 @@
+//! Every species parameter as a row of the editor: its field, a label, the unit it is
+//! shown in and a slider range that covers real jellyfish with room to experiment.
+//!
+//! Ranges are for dragging; typed values may leave them, and validation then decides.
+
+use crate::species::{Advection, Species};
+use bevy_egui::egui;
+use std::ops::RangeInclusive;
+
+/// A numeric field of [`Species`], borrowed for editing.
+pub enum Value<'a> {
+    Real(&'a mut f32),
+    Count(&'a mut u32),
+}
+
+/// One slider.
+pub struct Param {
+    /// The [`Species`] field, as named in RON files and validation errors.
+    pub field: &'static str,
+    pub label: &'static str,
+    pub unit: &'static str,
+    /// Shown value = stored value × `scale` (lengths in millimetres).
+    pub scale: f64,
+    /// Slider range, in shown units.
+    pub range: RangeInclusive<f64>,
+    pub logarithmic: bool,
+    pub value: for<'a> fn(&'a mut Species) -> Value<'a>,
+}
+
+/// A collapsible group of sliders.
+pub struct Section {
+    pub title: &'static str,
+    pub params: &'static [Param],
+}
+
+macro_rules! param {
+    ($field:ident, $label:literal, $unit:literal, $scale:expr, $range:expr, $log:expr, $kind:ident) => {
+        Param {
+            field: stringify!($field),
+            label: $label,
+            unit: $unit,
+            scale: $scale,
+            range: $range,
+            logarithmic: $log,
+            value: |s| Value::$kind(&mut s.$field),
+        }
+    };
+}
+
+const MM: f64 = 1e3;
+
+/// The sliders, in the order the panel shows them.
+pub const SECTIONS: &[Section] = &[
+    Section {
+        title: "Muscles",
+        params: &[
+            param!(
+                contraction_frequency,
+                "contraction frequency",
+                " Hz",
+                1.0,
+                0.1..=3.0,
+                false,
+                Real
+            ),
+            param!(
+                contraction_ratio,
+                "contracted length",
+                "",
+                1.0,
+                0.3..=1.0,
+                false,
+                Real
+            ),
+            param!(
+                contraction_duty,
+                "contraction duty",
+                "",
+                1.0,
+                0.1..=0.8,
+                false,
+                Real
+            ),
+            param!(
+                expansion_stagger,
+                "expansion stagger",
+                "",
+                1.0,
+                0.0..=1.0,
+                false,
+                Real
+            ),
+            param!(
+                muscle_modulus,
+                "muscle modulus",
+                " Pa",
+                1.0,
+                1e4..=4e6,
+                true,
+                Real
+            ),
+            param!(
+                muscle_cross_section,
+                "muscle cross-section",
+                "",
+                1.0,
+                1e-6..=1e-3,
+                true,
+                Real
+            ),
+        ],
+    },
+    Section {
+        title: "Bell",
+        params: &[
+            param!(diameter, "diameter", " mm", MM, 5.0..=200.0, true, Real),
+            param!(height, "height", " mm", MM, 3.0..=200.0, true, Real),
+            param!(
+                thickness,
+                "mesoglea thickness",
+                " mm",
+                MM,
+                0.5..=30.0,
+                true,
+                Real
+            ),
+            param!(
+                margin_thickness_ratio,
+                "margin thickness",
+                "",
+                1.0,
+                0.05..=1.0,
+                false,
+                Real
+            ),
+            param!(
+                elastic_modulus,
+                "mesoglea stiffness",
+                " Pa",
+                1.0,
+                100.0..=2e4,
+                true,
+                Real
+            ),
+            param!(
+                angular_stiffness,
+                "bending stiffness",
+                " N·m/rad",
+                1.0,
+                1e-5..=1e-1,
+                true,
+                Real
+            ),
+        ],
+    },
+    Section {
+        title: "Tentacles",
+        params: &[
+            param!(
+                tentacle_count,
+                "tentacles",
+                "",
+                1.0,
+                0.0..=96.0,
+                false,
+                Count
+            ),
+            param!(
+                tentacle_length,
+                "length",
+                " mm",
+                MM,
+                0.0..=300.0,
+                false,
+                Real
+            ),
+            param!(tentacle_radius, "radius", " mm", MM, 0.05..=3.0, true, Real),
+            param!(
+                tentacle_cross_section,
+                "spring cross-section",
+                "",
+                1.0,
+                1e-4..=1.0,
+                true,
+                Real
+            ),
+        ],
+    },
+    Section {
+        title: "Surface variation",
+        params: &[
+            param!(
+                structural_scale,
+                "structural scale",
+                "",
+                1.0,
+                0.0..=1.0,
+                false,
+                Real
+            ),
+            param!(
+                structural_frequency,
+                "structural lobes",
+                "",
+                1.0,
+                0.0..=24.0,
+                false,
+                Real
+            ),
+            param!(
+                compression_scale,
+                "compression scale",
+                "",
+                1.0,
+                0.0..=0.5,
+                false,
+                Real
+            ),
+            param!(
+                compression_frequency,
+                "compression ripples",
+                "",
+                1.0,
+                0.0..=24.0,
+                false,
+                Real
+            ),
+            param!(
+                unstructured_scale,
+                "noise scale",
+                "",
+                1.0,
+                0.0..=4.0,
+                false,
+                Real
+            ),
+            param!(
+                noise_frequency_lat,
+                "noise frequency, latitude",
+                "",
+                1.0,
+                0.0..=8.0,
+                false,
+                Real
+            ),
+            param!(
+                noise_frequency_lon,
+                "noise frequency, longitude",
+                "",
+                1.0,
+                0.0..=24.0,
+                false,
+                Real
+            ),
+            param!(
+                noise_frequency_time,
+                "noise frequency, time",
+                " /s",
+                1.0,
+                0.0..=0.2,
+                false,
+                Real
+            ),
+        ],
+    },
+    Section {
+        title: "Water",
+        params: &[
+            param!(
+                grid_resolution,
+                "grid cells per side",
+                "",
+                1.0,
+                32.0..=200.0,
+                false,
+                Count
+            ),
+            param!(
+                domain_diameters,
+                "domain",
+                " diameters",
+                1.0,
+                4.0..=20.0,
+                false,
+                Real
+            ),
+            param!(
+                viscosity,
+                "viscosity",
+                " Pa·s",
+                1.0,
+                1e-4..=1e-1,
+                true,
+                Real
+            ),
+            param!(
+                density,
+                "density",
+                " kg/m³",
+                1.0,
+                900.0..=1200.0,
+                false,
+                Real
+            ),
+        ],
+    },
+    Section {
+        title: "Mesh",
+        params: &[
+            param!(mesh_rings, "rings", "", 1.0, 4.0..=64.0, false, Count),
+            param!(
+                mesh_segments,
+                "segments",
+                "",
+                1.0,
+                8.0..=128.0,
+                false,
+                Count
+            ),
+            param!(
+                tentacle_sides,
+                "tentacle sides",
+                "",
+                1.0,
+                3.0..=12.0,
+                false,
+                Count
+            ),
+        ],
+    },
+    Section {
+        title: "Looks",
+        params: &[param!(glow, "glow", "", 1.0, 0.0..=4.0, false, Real)],
+    },
+];
+
+/// Fields edited by a widget other than a slider (see [`species_controls`]).
+pub const OTHER_FIELDS: &[&str] = &[
+    "name",
+    "advection",
+    "structural_abs",
+    "bell_color",
+    "glow_color",
+];
+
+/// Draws one slider; true if the user changed the value.
+fn slider(ui: &mut egui::Ui, param: &Param, species: &mut Species) -> bool {
+    let mut shown = match (param.value)(species) {
+        Value::Real(v) => *v as f64 * param.scale,
+        Value::Count(v) => *v as f64,
+    };
+    ui.label(param.label).on_hover_text(param.field);
+    let mut widget = egui::Slider::new(&mut shown, param.range.clone())
+        .logarithmic(param.logarithmic)
+        .clamping(egui::SliderClamping::Never)
+        .suffix(param.unit);
+    if matches!((param.value)(species), Value::Count(_)) {
+        widget = widget.integer();
+    }
+    let changed = ui.add(widget).changed();
+    ui.end_row();
+    if changed {
+        match (param.value)(species) {
+            Value::Real(v) => *v = (shown / param.scale) as f32,
+            Value::Count(v) => *v = shown.round().clamp(0.0, u32::MAX as f64) as u32,
+        }
+    }
+    changed
+}
+
+/// Every parameter of `species` as a widget, grouped in sections; true if any changed.
+pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
+    let mut changed = false;
+    for section in SECTIONS {
+        egui::CollapsingHeader::new(section.title)
+            .default_open(section.title == "Muscles")
+            .show(ui, |ui| {
+                egui::Grid::new(section.title)
+                    .num_columns(2)
+                    .striped(true)
+                    .show(ui, |ui| {
+                        for param in section.params {
+                            changed |= slider(ui, param, species);
+                        }
+                        match section.title {
+                            "Surface variation" => {
+                                ui.label("lobes as |sin|").on_hover_text("structural_abs");
+                                changed |= ui.checkbox(&mut species.structural_abs, "").changed();
+                                ui.end_row();
+                            }
+                            "Water" => changed |= advection(ui, &mut species.advection),
+                            "Looks" => {
+                                ui.label("bell colour").on_hover_text("bell_color");
+                                changed |= ui
+                                    .color_edit_button_rgba_unmultiplied(&mut species.bell_color)
+                                    .changed();
+                                ui.end_row();
+                                ui.label("glow colour").on_hover_text("glow_color");
+                                changed |=
+                                    ui.color_edit_button_rgb(&mut species.glow_color).changed();
+                                ui.end_row();
+                            }
+                            _ => {}
+                        }
+                    });
+            });
+    }
+    changed
+}
+
+fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
+    ui.label("advection")
+        .on_hover_text("advection: MacCormack has less numerical viscosity, so coarse grids swim");
+    let before = *advection;
+    egui::ComboBox::from_id_salt("advection")
+        .selected_text(format!("{advection:?}"))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(advection, Advection::SemiLagrangian, "SemiLagrangian");
+            ui.selectable_value(advection, Advection::MacCormack, "MacCormack");
+        });
+    ui.end_row();
+    *advection != before
+}
