@@ -167,9 +167,8 @@ fn schools_stay_in_the_tank() {
         TransformPlugin,
         JellyfishPlugin {
             settings: JellyfishSettings {
-                grid_override: Some(64),
                 mesh_resolution_scale: 0.25,
-                ..default()
+                ..scene::settings()
             },
         },
         school::plugin,

@@ -1,5 +1,5 @@
 //! The camera: HDR with bloom, tonemapping and underwater fog; it orbits a point (left
-//! drag), pans it (right drag) and zooms (scroll).
+//! drag), pans it (right drag) and zooms (scroll), unless the pointer is on a panel.
 
 use crate::tank::{SURFACE, WATER};
 use bevy::camera::{Hdr, RenderTarget};
@@ -30,7 +30,19 @@ impl Orbit {
 }
 
 pub fn plugin(app: &mut App) {
-    app.add_systems(Startup, spawn).add_systems(Update, control);
+    app.add_systems(Startup, spawn)
+        .add_systems(Update, control.run_if(not(pointer_over_ui)));
+}
+
+/// The mouse belongs to the editor's panels while it is over them or dragging a widget.
+#[cfg(feature = "editor")]
+fn pointer_over_ui(wants: Option<Res<bevy_egui::input::EguiWantsInput>>) -> bool {
+    wants.is_some_and(|w| w.wants_any_pointer_input())
+}
+
+#[cfg(not(feature = "editor"))]
+fn pointer_over_ui() -> bool {
+    false
 }
 
 fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {

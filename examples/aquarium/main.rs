@@ -2,14 +2,20 @@
 //!
 //! `cargo run --release --example aquarium -- [--count N] [--seed S]`
 //!
-//! Left drag orbits, right drag pans, scroll zooms. Every few seconds the log prints the
-//! frame rate, the number of jellyfish and the plugin's simulation and meshing time.
+//! Left drag orbits, right drag pans, scroll zooms. With the `editor` feature (on by
+//! default) panels edit each species live, change the school size and show the frame
+//! rate, jellyfish count and the plugin's simulation and meshing time; every few seconds
+//! the log prints the same numbers.
 //!
 //! Offscreen, without a window (Mesa's software Vulkan will do):
 //! `cargo run --release --example aquarium -- --screenshot out.png --frames 120
 //! [--size 1280x720]` renders that many frames at 60 simulated frames per second,
 //! writes the last one and exits.
+//!
+//! The headless benchmark, no renderer at all: `cargo run --release --example aquarium --
+//! --bench [--count N] [--frames 600]` prints the wall and CPU time of a 60 Hz frame.
 
+mod bench;
 mod camera;
 mod scene;
 mod school;
@@ -17,6 +23,8 @@ mod screenshot;
 mod snow;
 mod stats;
 mod tank;
+#[cfg(feature = "editor")]
+mod ui;
 
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::prelude::*;
@@ -29,7 +37,9 @@ use std::process::ExitCode;
 struct Args {
     school: School,
     screenshot: Option<PathBuf>,
-    frames: usize,
+    bench: bool,
+    /// Frames to render or to benchmark (default 120 and 600).
+    frames: Option<usize>,
     size: (u32, u32),
 }
 
@@ -41,7 +51,8 @@ impl Args {
                 seed: 1,
             },
             screenshot: None,
-            frames: 120,
+            bench: false,
+            frames: None,
             size: (1280, 720),
         };
         let mut it = std::env::args().skip(1);
@@ -58,9 +69,10 @@ impl Args {
                     args.school.seed = v.parse().map_err(|_| bad(&v))?;
                 }
                 "--screenshot" => args.screenshot = Some(value()?.into()),
+                "--bench" => args.bench = true,
                 "--frames" => {
                     let v = value()?;
-                    args.frames = v.parse().map_err(|_| bad(&v))?;
+                    args.frames = Some(v.parse().map_err(|_| bad(&v))?);
                 }
                 "--size" => {
                     let v = value()?;
@@ -73,7 +85,8 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--screenshot out.png [--frames 120] [--size 1280x720]]"
+                         [--screenshot out.png [--frames 120] [--size 1280x720]] \
+                         [--bench [--frames 600]]"
                     ));
                 }
             }
@@ -90,6 +103,10 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    if args.bench {
+        bench::run(args.school, args.frames.unwrap_or(600), scene::settings());
+        return ExitCode::SUCCESS;
+    }
     if let Some(path) = &args.screenshot {
         return match picture(&args, path) {
             Ok(()) => ExitCode::SUCCESS,
@@ -99,27 +116,30 @@ fn main() -> ExitCode {
             }
         };
     }
-    App::new()
-        .add_plugins((
-            DefaultPlugins.set(WindowPlugin {
-                primary_window: Some(Window {
-                    title: "bevy_jellyfish aquarium".into(),
-                    ..default()
-                }),
+    let mut app = App::new();
+    app.add_plugins((
+        DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: "bevy_jellyfish aquarium".into(),
                 ..default()
             }),
-            AquariumPlugin {
-                school: args.school,
-            },
-        ))
-        .run();
+            ..default()
+        }),
+        AquariumPlugin {
+            school: args.school,
+        },
+    ));
+    #[cfg(feature = "editor")]
+    app.add_plugins(ui::plugin);
+    app.run();
     ExitCode::SUCCESS
 }
 
-/// Renders `args.frames` frames offscreen and writes the last to `path`.
+/// Renders `args.frames` frames (default 120) offscreen and writes the last to `path`.
 fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let (width, height) = args.size;
     let school = args.school;
+    let frames_to_render = args.frames.unwrap_or(120);
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
         app.add_plugins(AquariumPlugin { school });
     })
@@ -127,14 +147,14 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     println!("rendering offscreen on {}", offscreen.adapter);
     let start = std::time::Instant::now();
     let (mut simulation, mut meshing) = (0.0, 0.0);
-    for _ in 0..args.frames {
+    for _ in 0..frames_to_render {
         offscreen.update();
         let store = offscreen.world().resource::<DiagnosticsStore>();
         let value = |p: &DiagnosticPath| store.get(p).and_then(|d| d.value()).unwrap_or(0.0);
         simulation += value(&JellyfishDiagnostics::SIMULATION);
         meshing += value(&JellyfishDiagnostics::MESHING);
     }
-    let frames = args.frames.max(1) as f64;
+    let frames = frames_to_render.max(1) as f64;
     let wall = start.elapsed().as_secs_f64() * 1e3 / frames;
     let store = offscreen.world().resource::<DiagnosticsStore>();
     let count = store
@@ -144,7 +164,7 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     println!(
         "{} frames at {width}x{height}, {count} jellyfish: {wall:.1} ms per frame (render \
          included), simulation {:.2} ms, meshing {:.2} ms per frame (CPU, summed over jellyfish)",
-        args.frames,
+        frames_to_render,
         simulation / frames,
         meshing / frames,
     );
