@@ -11,10 +11,10 @@ use bevy_jellyfish::{JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
 /// Runs `frames` frames after a warm-up and prints wall and CPU time per frame.
-pub fn run(school: School, frames: usize, settings: JellyfishSettings) {
+pub fn run(school: School, frames: usize, settings: JellyfishSettings, pools: TaskPoolPlugin) {
     let mut app = App::new();
     app.add_plugins((
-        MinimalPlugins,
+        MinimalPlugins.set(pools),
         AssetPlugin::default(),
         MeshPlugin,
         TransformPlugin,

@@ -104,7 +104,12 @@ fn main() -> ExitCode {
         }
     };
     if args.bench {
-        bench::run(args.school, args.frames.unwrap_or(600), scene::settings());
+        bench::run(
+            args.school,
+            args.frames.unwrap_or(600),
+            scene::settings(),
+            task_pools(),
+        );
         return ExitCode::SUCCESS;
     }
     if let Some(path) = &args.screenshot {
@@ -118,13 +123,15 @@ fn main() -> ExitCode {
     }
     let mut app = App::new();
     app.add_plugins((
-        DefaultPlugins.set(WindowPlugin {
-            primary_window: Some(Window {
-                title: "bevy_jellyfish aquarium".into(),
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: Some(Window {
+                    title: "bevy_jellyfish aquarium".into(),
+                    ..default()
+                }),
                 ..default()
-            }),
-            ..default()
-        }),
+            })
+            .set(task_pools()),
         AquariumPlugin {
             school: args.school,
         },
@@ -133,6 +140,18 @@ fn main() -> ExitCode {
     app.add_plugins(ui::plugin);
     app.run();
     ExitCode::SUCCESS
+}
+
+/// Every core for the compute pool, where the plugin steps and meshes jellyfish in
+/// parallel. Bevy's default keeps a quarter of the cores each for I/O and async tasks, at
+/// least one each: on two cores that leaves the simulation one.
+fn task_pools() -> TaskPoolPlugin {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut options = TaskPoolOptions::default();
+    options.compute.min_threads = cores;
+    TaskPoolPlugin {
+        task_pool_options: options,
+    }
 }
 
 /// Renders `args.frames` frames (default 120) offscreen and writes the last to `path`.

@@ -96,7 +96,8 @@ pub(super) fn species_window(
             }
             // Above the sliders, so it is seen whichever section is open.
             if let Some(error) = editor.error() {
-                ui.colored_label(ERROR, format!("not applied: {error}"));
+                let text = egui::RichText::new(format!("not applied: {error}")).color(ERROR);
+                ui.add(egui::Label::new(text).wrap());
             }
             ui.separator();
             changed |= species_controls(ui, editor.draft_mut());
@@ -174,6 +175,8 @@ pub(super) fn stats_window(mut contexts: EguiContexts, store: Res<DiagnosticsSto
         .anchor(egui::Align2::RIGHT_TOP, [-10.0, 10.0])
         .resizable(false)
         .show(ctx, |ui| {
+            // Wide enough for the longest numbers, so the window does not jitter.
+            ui.set_min_width(280.0);
             egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
                 let mut row = |label: &str, value: String| {
                     ui.label(label);
