@@ -7,6 +7,7 @@ use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::JellyfishSlice;
 use bevy_jellyfish::{JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
@@ -46,6 +47,7 @@ pub fn run(school: School, frames: usize, settings: JellyfishSettings, pools: Ta
         app.update();
     }
     let (mut simulation, mut meshing) = (0.0, 0.0);
+    let steps_before = steps(&mut app);
     let start = Instant::now();
     for _ in 0..frames {
         app.update();
@@ -54,17 +56,18 @@ pub fn run(school: School, frames: usize, settings: JellyfishSettings, pools: Ta
         meshing += value(store, &JellyfishDiagnostics::MESHING);
     }
     let n = frames.max(1) as f64;
+    let substeps_per_second =
+        (steps(&mut app) - steps_before) as f64 / count(&app).max(1.0) / (n / 60.0);
     let wall = start.elapsed().as_secs_f64() * 1e3 / n;
     let threads = bevy::tasks::ComputeTaskPool::get().thread_num();
     println!(
-        "headless aquarium: {} jellyfish, grid {}, {} Hz simulation, {frames} frames at 60 fps on \
-         {threads} threads: {wall:.2} ms wall per frame; CPU per frame: simulation {:.2} ms, \
-         meshing {:.2} ms ({:.3} ms per jellyfish)",
+        "headless aquarium: {} jellyfish, grid {}, {substeps_per_second:.1} substeps per \
+         jellyfish-second, {frames} frames at 60 fps on {threads} threads: {wall:.2} ms wall \
+         per frame; CPU per frame: simulation {:.2} ms, meshing {:.2} ms ({:.3} ms per jellyfish)",
         count(&app),
         settings
             .grid_override
             .map_or("per species".into(), |g| g.to_string()),
-        settings.simulation_hz,
         simulation / n,
         meshing / n,
         (simulation + meshing) / n / count(&app).max(1.0),
@@ -80,4 +83,13 @@ fn count(app: &App) -> f64 {
         app.world().resource::<DiagnosticsStore>(),
         &JellyfishDiagnostics::COUNT,
     )
+}
+
+/// Coupled steps taken so far, summed over jellyfish.
+fn steps(app: &mut App) -> u64 {
+    let mut slices = app.world_mut().query::<&JellyfishSlice>();
+    slices
+        .iter(app.world())
+        .filter_map(|s| s.sim().map(|sim| sim.steps()))
+        .sum()
 }

@@ -75,6 +75,9 @@ pub struct JellyfishSlice {
     pub(crate) seed: u32,
     /// Fixed ticks since the last step.
     pub(crate) ticks: u32,
+    /// Fixed ticks between steps, chosen for the species
+    /// ([`JellyfishSettings::ticks_per_step`](super::JellyfishSettings::ticks_per_step)).
+    pub(crate) ticks_per_step: u32,
     pub(crate) previous: Snapshot,
     pub(crate) current: Snapshot,
 }
@@ -106,17 +109,26 @@ impl JellyfishSlice {
     }
 
     /// How far the frame is from the previous step to the current one, in [0, 1).
-    pub(crate) fn blend(&self, ticks_per_step: u32, overstep_fraction: f32) -> f32 {
-        ((self.ticks as f32 + overstep_fraction) / ticks_per_step as f32).clamp(0.0, 1.0)
+    pub(crate) fn blend(&self, overstep_fraction: f32) -> f32 {
+        ((self.ticks as f32 + overstep_fraction) / self.ticks_per_step.max(1) as f32)
+            .clamp(0.0, 1.0)
     }
 
-    pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32, ticks: u32) {
+    /// Starts the slice; the seed picks which tick it steps on, spreading the load.
+    pub(crate) fn start(
+        &mut self,
+        sim: SliceSim,
+        species: Species,
+        seed: u32,
+        ticks_per_step: u32,
+    ) {
         self.current.capture(&sim);
         self.previous.clone_from(&self.current);
         self.sim = Some(sim);
         self.species = species;
         self.seed = seed;
-        self.ticks = ticks;
+        self.ticks_per_step = ticks_per_step.max(1);
+        self.ticks = seed % self.ticks_per_step;
     }
 }
 

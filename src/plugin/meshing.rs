@@ -28,7 +28,6 @@ fn build_buffers(
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
 ) {
-    let ticks = settings.ticks_per_step(time.timestep());
     let overstep = time.overstep_fraction();
     jellyfish.par_iter_mut().for_each(|(slice, mut meshes)| {
         let Some(sim) = slice.sim() else {
@@ -36,7 +35,7 @@ fn build_buffers(
         };
         let start = Instant::now();
         let meshes = &mut *meshes;
-        let t = slice.blend(ticks, overstep);
+        let t = slice.blend(overstep);
         meshes.blended.blend(&slice.previous, &slice.current, t);
         let species: Species = settings.meshed(&slice.species);
         let view = meshes.blended.view(sim.view().rest_bell);

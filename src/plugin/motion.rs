@@ -3,7 +3,6 @@
 
 use super::JellyfishSystems;
 use super::components::{JellyfishSlice, SwimMotion};
-use super::settings::JellyfishSettings;
 use bevy::prelude::*;
 
 pub(super) fn plugin(app: &mut App) {
@@ -19,9 +18,7 @@ pub(super) fn plugin(app: &mut App) {
 fn write_transforms(
     mut jellyfish: Query<(&JellyfishSlice, &mut SwimMotion, &mut Transform)>,
     time: Res<Time<Fixed>>,
-    settings: Res<JellyfishSettings>,
 ) {
-    let ticks = settings.ticks_per_step(time.timestep());
     let overstep = time.overstep_fraction();
     jellyfish
         .par_iter_mut()
@@ -29,7 +26,7 @@ fn write_transforms(
             if slice.sim.is_none() {
                 return;
             }
-            let t = slice.blend(ticks, overstep);
+            let t = slice.blend(overstep);
             let distance = slice.previous.swim + t * (slice.current.swim - slice.previous.swim);
             let along = |tf: &Transform, d: f32| tf.rotation * (tf.scale * Vec3::Y * d);
             if motion.written != Some(*transform) {

@@ -36,7 +36,6 @@ fn create_slices(
     if edits.read().count() > 0 || settings.is_changed() {
         failed.clear();
     }
-    let ticks = settings.ticks_per_step(time.timestep());
     jellyfish
         .par_iter_mut()
         .for_each(|(entity, jelly, mut slice)| {
@@ -51,7 +50,8 @@ fn create_slices(
                 Ok(mut sim) => {
                     let seed = jelly.seed_for(entity);
                     sim.set_time(jelly.phase_for(seed) * simulated.period());
-                    slice.start(sim, simulated, seed, seed % ticks);
+                    let ticks = settings.ticks_per_step(time.timestep(), &simulated);
+                    slice.start(sim, simulated, seed, ticks);
                 }
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
             }

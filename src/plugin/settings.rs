@@ -1,5 +1,6 @@
 //! [`JellyfishSettings`]: simulation rate and level of detail for every jellyfish.
 
+use crate::sim::SliceSim;
 use crate::species::{Advection, Species};
 use bevy::prelude::*;
 use std::time::Duration;
@@ -8,9 +9,9 @@ use std::time::Duration;
 #[derive(Resource, Clone, Debug, PartialEq, Reflect)]
 #[reflect(Resource)]
 pub struct JellyfishSettings {
-    /// Simulation steps per second. A step takes a whole number of `FixedUpdate` ticks
-    /// (at least one), so the rate is rounded to the nearest divisor of the fixed rate;
-    /// a slice's stable step is about 1/32 of a stroke, so ~32 Hz costs one substep.
+    /// The fewest simulation steps (frames blend between them) per second. Each slice
+    /// steps every whole number of `FixedUpdate` ticks, as many as make it cheapest for its
+    /// species (it substeps to stay accurate), but at least this often.
     pub simulation_hz: f64,
     /// Fluid cells per side for every slice instead of the species' own (`None`): the
     /// cost knob, about quadratic (64 is the aquarium's resolution, 100 the paper's).
@@ -27,7 +28,7 @@ pub struct JellyfishSettings {
 impl Default for JellyfishSettings {
     fn default() -> Self {
         Self {
-            simulation_hz: 32.0,
+            simulation_hz: 12.0,
             grid_override: None,
             advection_override: None,
             mesh_resolution_scale: 1.0,
@@ -62,14 +63,81 @@ impl JellyfishSettings {
         s
     }
 
-    /// Fixed ticks per simulation step at the given fixed timestep.
-    pub fn ticks_per_step(&self, fixed: Duration) -> u32 {
-        let fixed_hz = 1.0 / fixed.as_secs_f64().max(1e-9);
-        let ticks = (fixed_hz / self.simulation_hz.max(1e-6)).round();
-        if ticks.is_finite() {
-            ticks.clamp(1.0, 1000.0) as u32
+    /// Fixed ticks per step for a slice of `species` (as simulated): of the step lengths
+    /// `simulation_hz` allows, the one needing the fewest substeps per second. A moon jelly
+    /// at 64 Hz ticks steps every 5 ticks in 2 substeps (25.6 per second), where every 2
+    /// ticks in 1 would cost 32.
+    pub fn ticks_per_step(&self, fixed: Duration, species: &Species) -> u32 {
+        let tick = fixed.as_secs_f64().max(1e-9);
+        let longest = (1.0 / (self.simulation_hz.max(1e-6) * tick)).round();
+        let longest = if longest.is_finite() {
+            longest.clamp(1.0, 1000.0) as u32
         } else {
             1
+        };
+        let accurate = SliceSim::accurate_step(species);
+        let cost = |k: u32| {
+            let dt = k as f64 * tick;
+            // Substeps as `SliceSim::advance` counts them, in f32.
+            ((dt as f32 / accurate).ceil().max(1.0) as f64) / dt
+        };
+        (1..=longest)
+            .fold((1, f64::INFINITY), |best, k| {
+                let c = cost(k);
+                if c < best.1 * (1.0 - 1e-9) {
+                    (k, c)
+                } else {
+                    best
+                }
+            })
+            .0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TICK: Duration = Duration::from_micros(15_625); // Bevy's 64 Hz
+
+    /// Substeps per second `SliceSim::advance` takes for steps of `ticks` ticks.
+    fn substeps_per_second(species: &Species, ticks: u32) -> f64 {
+        let dt = ticks as f64 * TICK.as_secs_f64();
+        (dt as f32 / SliceSim::accurate_step(species)).ceil() as f64 / dt
+    }
+
+    #[test]
+    fn a_moon_jelly_steps_less_often_than_every_other_tick() {
+        let settings = JellyfishSettings::default();
+        let aurelia = Species::aurelia();
+        let ticks = settings.ticks_per_step(TICK, &aurelia);
+        assert_eq!(ticks, 5);
+        assert!(substeps_per_second(&aurelia, ticks) < 0.81 * substeps_per_second(&aurelia, 2));
+    }
+
+    #[test]
+    fn steps_are_the_cheapest_the_rate_floor_allows() {
+        for hz in [1.0, 4.0, 12.0, 30.0, 64.0, 500.0] {
+            let settings = JellyfishSettings {
+                simulation_hz: hz,
+                ..Default::default()
+            };
+            let longest = ((64.0 / hz).round() as u32).max(1);
+            for freq in [0.2, 0.6, 0.7, 1.4, 3.0, 9.0] {
+                let species = Species {
+                    contraction_frequency: freq,
+                    ..Species::aurelia()
+                };
+                let ticks = settings.ticks_per_step(TICK, &species);
+                assert!(
+                    (1..=longest).contains(&ticks),
+                    "{hz} Hz, {freq} Hz: {ticks}"
+                );
+                let cost = substeps_per_second(&species, ticks);
+                for k in 1..=longest {
+                    assert!(cost <= substeps_per_second(&species, k) + 1e-9);
+                }
+            }
         }
     }
 }

@@ -14,31 +14,33 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// Each slice steps once every `ticks_per_step` fixed ticks by that much time, so its
-/// simulated time is exactly the fixed clock's and the result does not depend on the
-/// frame rate. Which tick a slice steps on depends on its seed, spreading the cost.
+/// Each slice steps once every `ticks_per_step` fixed ticks (its own) by that much
+/// time, so its simulated time is exactly the fixed clock's and the result does not depend
+/// on the frame rate. Which tick a slice steps on depends on its seed, spreading the cost.
 fn step_slices(
     mut jellyfish: Query<&mut JellyfishSlice>,
     time: Res<Time<Fixed>>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
 ) {
-    let ticks = settings.ticks_per_step(time.timestep());
-    let dt = time.timestep().as_secs_f32() * ticks as f32;
+    let tick = time.timestep().as_secs_f32();
     jellyfish.par_iter_mut().for_each(|mut slice| {
         let slice = &mut *slice;
         let Some(sim) = slice.sim.as_mut() else {
             return;
         };
         slice.ticks += 1;
-        if slice.ticks < ticks {
+        if slice.ticks < slice.ticks_per_step {
             return;
         }
+        let dt = tick * slice.ticks_per_step as f32;
         slice.ticks = 0;
         let start = Instant::now();
         sim.advance(dt);
         std::mem::swap(&mut slice.previous, &mut slice.current);
         slice.current.capture(sim);
+        // Between steps, so that a new species or setting never splits one.
+        slice.ticks_per_step = settings.ticks_per_step(time.timestep(), &slice.species);
         timings.add_simulation(start.elapsed());
     });
 }

@@ -134,7 +134,13 @@ impl SliceSim {
     pub fn max_step(&self) -> f32 {
         let speed = self.speed.max(1e-6);
         let cfl = COURANT * self.fluid.h / speed;
-        cfl.min(self.species.period() / MIN_STEPS_PER_CYCLE)
+        cfl.min(Self::accurate_step(&self.species))
+    }
+
+    /// The longest step that resolves the muscle drive (1/32 of a stroke), s. The flow
+    /// can ask for shorter ones (the Courant limit), rarely at these speeds.
+    pub fn accurate_step(species: &Species) -> f32 {
+        species.period() / MIN_STEPS_PER_CYCLE
     }
 
     /// One coupled step of `dt` seconds.
