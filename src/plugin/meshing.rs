@@ -70,7 +70,7 @@ fn write_meshes(
         meshes.dirty = false;
         let topology = meshes.written != meshes.buffers.resolution();
         meshes.written = meshes.buffers.resolution();
-        let umbrella = &meshes.buffers.umbrella;
+        let umbrella = &mut meshes.buffers.umbrella;
         match &meshes.umbrella {
             Some(handle) => {
                 if let Some(mut mesh) = assets.get_mut(handle) {
@@ -84,7 +84,7 @@ fn write_meshes(
             }
             None => {}
         }
-        let tentacles = &meshes.buffers.tentacles;
+        let tentacles = &mut meshes.buffers.tentacles;
         let visible = tentacles.vertex_count() > 0;
         match (&meshes.tentacles, meshes.tentacle_entity) {
             (Some(handle), Some(child)) => {
@@ -119,7 +119,7 @@ fn write_meshes(
     timings.add_meshing(start.elapsed());
 }
 
-fn new_mesh(b: &SurfaceBuffers) -> Mesh {
+fn new_mesh(b: &mut SurfaceBuffers) -> Mesh {
     let mut mesh = Mesh::new(
         PrimitiveTopology::TriangleList,
         RenderAssetUsages::default(),
@@ -128,11 +128,13 @@ fn new_mesh(b: &SurfaceBuffers) -> Mesh {
     mesh
 }
 
-/// Overwrites positions and normals in place; the whole topology only when it changed.
-fn write(mesh: &mut Mesh, b: &SurfaceBuffers, topology: bool) {
+/// Hands the new positions and normals to the mesh by swapping buffers (the build
+/// overwrites every vertex each frame, so what comes back is as good as empty); the whole
+/// topology is copied only when it changed.
+fn write(mesh: &mut Mesh, b: &mut SurfaceBuffers, topology: bool) {
     let in_place = !topology
-        && copy3(mesh, Mesh::ATTRIBUTE_POSITION, &b.positions)
-        && copy3(mesh, Mesh::ATTRIBUTE_NORMAL, &b.normals);
+        && swap3(mesh, Mesh::ATTRIBUTE_POSITION, &mut b.positions)
+        && swap3(mesh, Mesh::ATTRIBUTE_NORMAL, &mut b.normals);
     if !in_place {
         mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, b.positions.clone());
         mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals.clone());
@@ -141,10 +143,14 @@ fn write(mesh: &mut Mesh, b: &SurfaceBuffers, topology: bool) {
     }
 }
 
-fn copy3(mesh: &mut Mesh, attribute: bevy::mesh::MeshVertexAttribute, values: &[[f32; 3]]) -> bool {
+fn swap3(
+    mesh: &mut Mesh,
+    attribute: bevy::mesh::MeshVertexAttribute,
+    values: &mut Vec<[f32; 3]>,
+) -> bool {
     match mesh.try_attribute_mut(attribute) {
         Ok(VertexAttributeValues::Float32x3(v)) if v.len() == values.len() => {
-            v.copy_from_slice(values);
+            std::mem::swap(v, values);
             true
         }
         _ => false,

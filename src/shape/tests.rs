@@ -407,6 +407,23 @@ fn frames_reuse_the_buffers() {
     assert_eq!(mesh.umbrella.indices, indices);
 }
 
+/// The plugin swaps these buffers with the mesh asset's each frame, so a frame must not
+/// depend on what they held: every position and normal is rewritten.
+#[test]
+fn a_frame_rewrites_every_vertex() {
+    let sp = Species::aurelia();
+    let slice = SliceOutline::contracted(&sp, 25, 14, 0.4);
+    let mut mesh = build(&slice.view(), &sp, 3, 0.0);
+    let fresh = build(&slice.view(), &sp, 3, 0.5);
+    for buf in [&mut mesh.umbrella, &mut mesh.tentacles] {
+        buf.positions.fill([f32::NAN; 3]);
+        buf.normals.fill([f32::NAN; 3]);
+    }
+    build_into(&mut mesh, &slice.view(), &sp, 3, 0.5).unwrap();
+    assert_eq!(mesh.umbrella, fresh.umbrella);
+    assert_eq!(mesh.tentacles, fresh.tentacles);
+}
+
 #[test]
 fn tentacles_hang_from_the_aperture() {
     let sp = plain(&Species::aurelia());
