@@ -173,9 +173,10 @@ impl Fluid {
             (&mut self.back_u, &self.scratch_u, &self.u, &self.bounds_u),
             (&mut self.back_v, &self.scratch_v, &self.v, &self.bounds_v),
         ] {
-            for k in 0..out.len() {
-                let (lo, hi) = bounds[k];
-                out[k] = (fwd[k] + 0.5 * (orig[k] - out[k])).clamp(lo, hi);
+            for (((back, fwd), orig), &(lo, hi)) in out.iter_mut().zip(fwd).zip(orig).zip(bounds) {
+                // max-then-min, not clamp: clamp panics on NaN bounds, and a blow-up
+                // must reach the health check, not abort.
+                *back = (fwd + 0.5 * (orig - *back)).max(lo).min(hi);
             }
         }
         std::mem::swap(&mut self.u, &mut self.back_u);
@@ -219,21 +220,28 @@ impl Fluid {
     /// Removes the divergent part of the velocity with an exact Poisson solve.
     pub fn project(&mut self) {
         let (n, h) = (self.n, self.h);
+        // φ = div u per cell (as `divergence` computes it), row by row.
         for j in 0..n {
-            for i in 0..n {
-                self.phi[j * n + i] = self.divergence(i, j);
+            let u = &self.u[j * (n + 1)..][..n + 1];
+            let (v0, v1) = (&self.v[j * n..][..n], &self.v[(j + 1) * n..][..n]);
+            let phi = &mut self.phi[j * n..][..n];
+            for (i, p) in phi.iter_mut().enumerate() {
+                *p = ((u[i + 1] - u[i]) + (v1[i] - v0[i])) / h;
             }
         }
         self.poisson.solve(&mut self.phi);
-        let phi = &self.phi;
         for j in 0..n {
+            let phi = &self.phi[j * n..][..n];
+            let u = &mut self.u[j * (n + 1)..][..n + 1];
             for i in 1..n {
-                self.u[j * (n + 1) + i] -= (phi[j * n + i] - phi[j * n + i - 1]) / h;
+                u[i] -= (phi[i] - phi[i - 1]) / h;
             }
         }
         for j in 1..n {
-            for i in 0..n {
-                self.v[j * n + i] -= (phi[j * n + i] - phi[(j - 1) * n + i]) / h;
+            let (below, here) = (&self.phi[(j - 1) * n..][..n], &self.phi[j * n..][..n]);
+            let v = &mut self.v[j * n..][..n];
+            for ((v, p1), p0) in v.iter_mut().zip(here).zip(below) {
+                *v -= (p1 - p0) / h;
             }
         }
     }
@@ -258,19 +266,19 @@ impl Fluid {
     /// max |u| over the grid (cell-centred), m/s; NaN if any velocity is NaN.
     pub fn speed_max(&self) -> f32 {
         let n = self.n;
-        let mut max2 = 0.0f32;
+        let (mut max2, mut nan) = (0.0f32, false);
         for j in 0..n {
-            for i in 0..n {
-                let uc = 0.5 * (self.u[j * (n + 1) + i] + self.u[j * (n + 1) + i + 1]);
-                let vc = 0.5 * (self.v[j * n + i] + self.v[(j + 1) * n + i]);
+            let u = &self.u[j * (n + 1)..][..n + 1];
+            let (v0, v1) = (&self.v[j * n..][..n], &self.v[(j + 1) * n..][..n]);
+            for (uw, (va, vb)) in u.windows(2).zip(v0.iter().zip(v1)) {
+                let (uc, vc) = (0.5 * (uw[0] + uw[1]), 0.5 * (va + vb));
                 let s2 = uc * uc + vc * vc;
-                // Unlike f32::max, lets a NaN through and keeps it.
-                if s2 > max2 || s2.is_nan() {
-                    max2 = s2;
-                }
+                max2 = max2.max(s2);
+                nan |= s2.is_nan();
             }
         }
-        max2.sqrt()
+        // f32::max skips NaN; a NaN anywhere must come through.
+        if nan { f32::NAN } else { max2.sqrt() }
     }
 
     /// Velocity at a point, bilinear per component.
@@ -406,42 +414,100 @@ fn semi_lagrangian(
     n: usize,
     s: f32,
     out: [&mut Vec<f32>; 2],
-    mut bounds: Option<[&mut Vec<(f32, f32)>; 2]>,
+    bounds: Option<[&mut Vec<(f32, f32)>; 2]>,
 ) {
     let [u, v] = vel;
     let [out_u, out_v] = out;
+    let [mut bounds_u, mut bounds_v] = match bounds {
+        Some([bu, bv]) => [Some(bu), Some(bv)],
+        None => [None, None],
+    };
+    // u faces, (n + 1) × n: each one's own u, and v averaged from the four faces around it.
     for j in 0..n {
+        let row = j * (n + 1);
+        let u_row = &u[row..][..n + 1];
+        let (v0, v1) = (&v[j * n..][..n], &v[(j + 1) * n..][..n]);
         for i in 1..n {
-            // The face's own velocity: u directly, v from the four faces around it.
-            let k = j * (n + 1) + i;
-            let cu = s * u[k];
-            let cv = s
-                * 0.25
-                * (v[j * n + i - 1] + v[j * n + i] + v[(j + 1) * n + i - 1] + v[(j + 1) * n + i]);
-            let (value, lo, hi) = bilinear_bounded(src[0], n + 1, n, i as f32 - cu, j as f32 - cv);
-            out_u[k] = value;
-            if let Some([bu, _]) = bounds.as_mut() {
-                bu[k] = (lo, hi);
-            }
+            let cu = s * u_row[i];
+            let cv = s * 0.25 * (v0[i - 1] + v0[i] + v1[i - 1] + v1[i]);
+            let (x, y) = (i as f32 - cu, j as f32 - cv);
+            trace(
+                src[0],
+                n + 1,
+                n,
+                x,
+                y,
+                row + i,
+                out_u,
+                bounds_u.as_deref_mut(),
+            );
         }
     }
+    // v faces, n × (n + 1): each one's own v, and u averaged likewise.
     for j in 1..n {
+        let row = j * n;
+        let v_row = &v[row..][..n];
+        let (u0, u1) = (&u[(j - 1) * (n + 1)..][..n + 1], &u[j * (n + 1)..][..n + 1]);
         for i in 0..n {
-            let k = j * n + i;
-            let cv = s * v[k];
-            let cu = s
-                * 0.25
-                * (u[(j - 1) * (n + 1) + i]
-                    + u[(j - 1) * (n + 1) + i + 1]
-                    + u[j * (n + 1) + i]
-                    + u[j * (n + 1) + i + 1]);
-            let (value, lo, hi) = bilinear_bounded(src[1], n, n + 1, i as f32 - cu, j as f32 - cv);
-            out_v[k] = value;
-            if let Some([_, bv]) = bounds.as_mut() {
-                bv[k] = (lo, hi);
-            }
+            let cv = s * v_row[i];
+            let cu = s * 0.25 * (u0[i] + u0[i + 1] + u1[i] + u1[i + 1]);
+            let (x, y) = (i as f32 - cu, j as f32 - cv);
+            trace(
+                src[1],
+                n,
+                n + 1,
+                x,
+                y,
+                row + i,
+                out_v,
+                bounds_v.as_deref_mut(),
+            );
         }
     }
+}
+
+/// A grid index as a coordinate (through u32: one instruction, where usize takes a branch).
+#[inline(always)]
+fn cell(i: usize) -> f32 {
+    i as u32 as f32
+}
+
+/// Writes the sample of `field` at `(x, y)` to `out[k]`, and its corners' range to
+/// `bounds[k]` when asked.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn trace(
+    field: &[f32],
+    nx: usize,
+    ny: usize,
+    x: f32,
+    y: f32,
+    k: usize,
+    out: &mut [f32],
+    bounds: Option<&mut Vec<(f32, f32)>>,
+) {
+    let [a0, a1, b0, b1, fx, fy] = corners(field, nx, ny, x, y);
+    let a = a0 + fx * (a1 - a0);
+    let b = b0 + fx * (b1 - b0);
+    out[k] = a + fy * (b - a);
+    if let Some(bounds) = bounds {
+        // Plain comparisons (one instruction each, unlike NaN-aware f32::min); the
+        // correction's max-then-min copes with NaN bounds.
+        let (lo, hi) = (
+            |a: f32, b: f32| if a < b { a } else { b },
+            |a: f32, b: f32| if a > b { a } else { b },
+        );
+        bounds[k] = (lo(lo(a0, a1), lo(b0, b1)), hi(hi(a0, a1), hi(b0, b1)));
+    }
+}
+
+/// The four values around `(x, y)` (lower row, then upper) and the fractions between them.
+#[inline]
+fn corners(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> [f32; 6] {
+    let (i, j, fx, fy) = locate(nx, ny, x, y);
+    // One bounds check for all four corners.
+    let cell = &field[j * nx + i..][..nx + 2];
+    [cell[0], cell[1], cell[nx], cell[nx + 1], fx, fy]
 }
 
 /// The lower-left corner and the fractions of a point `(x, y)` (fractional indices) in an
@@ -451,41 +517,31 @@ fn semi_lagrangian(
 fn locate(nx: usize, ny: usize, x: f32, y: f32) -> (usize, usize, f32, f32) {
     let x = x.clamp(0.0, (nx - 1) as f32);
     let y = y.clamp(0.0, (ny - 1) as f32);
-    // Non-negative after the clamp, so truncation is floor (and NaN becomes 0).
-    let i = (x as usize).min(nx - 2);
-    let j = (y as usize).min(ny - 2);
-    (i, j, x - i as f32, y - j as f32)
-}
-
-/// A bilinear sample, also returning the smallest and largest of the four corners.
-#[inline]
-fn bilinear_bounded(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> (f32, f32, f32) {
-    let (i, j, fx, fy) = locate(nx, ny, x, y);
-    let row0 = j * nx + i;
-    let row1 = row0 + nx;
-    let (a0, a1, b0, b1) = (field[row0], field[row0 + 1], field[row1], field[row1 + 1]);
-    let a = a0 + fx * (a1 - a0);
-    let b = b0 + fx * (b1 - b0);
-    (
-        a + fy * (b - a),
-        a0.min(a1).min(b0.min(b1)),
-        a0.max(a1).max(b0.max(b1)),
-    )
+    // Non-negative after the clamp, so truncation is floor (and NaN becomes 0); through
+    // i32 and u32, the conversions are single instructions.
+    let i = (x as i32 as usize).min(nx - 2);
+    let j = (y as i32 as usize).min(ny - 2);
+    (i, j, x - cell(i), y - cell(j))
 }
 
 /// One explicit diffusion sweep `dst = src + a·∇²src` with zero-gradient edges.
 fn laplacian_step(src: &[f32], dst: &mut [f32], nx: usize, ny: usize, a: f32) {
     for j in 0..ny {
-        let jm = j.saturating_sub(1);
-        let jp = (j + 1).min(ny - 1);
-        for i in 0..nx {
-            let im = i.saturating_sub(1);
-            let ip = (i + 1).min(nx - 1);
-            let c = src[j * nx + i];
-            let lap =
-                src[j * nx + im] + src[j * nx + ip] + src[jm * nx + i] + src[jp * nx + i] - 4.0 * c;
-            dst[j * nx + i] = c + a * lap;
+        let (jm, jp) = (j.saturating_sub(1), (j + 1).min(ny - 1));
+        let (below, here, above) = (
+            &src[jm * nx..][..nx],
+            &src[j * nx..][..nx],
+            &src[jp * nx..][..nx],
+        );
+        let out = &mut dst[j * nx..][..nx];
+        let update = |c: f32, left: f32, right: f32, i: usize| {
+            c + a * (left + right + below[i] + above[i] - 4.0 * c)
+        };
+        out[0] = update(here[0], here[0], here[1], 0);
+        for i in 1..nx - 1 {
+            out[i] = update(here[i], here[i - 1], here[i + 1], i);
         }
+        out[nx - 1] = update(here[nx - 1], here[nx - 2], here[nx - 1], nx - 1);
     }
 }
 
