@@ -280,6 +280,12 @@ fn save_writes_a_file_that_loads_back_and_keeps_its_comments() {
     assert!(!comments(&original).is_empty());
     assert_eq!(comments(&text), comments(&original));
     assert_eq!(Species::from_ron(&text).unwrap(), draft);
+    // Like the shipped files, it spells out only what differs from the moon jelly.
+    assert!(text.contains("bell_color") && text.contains("tentacle_count"));
+    assert!(
+        !text.contains("viscosity") && !text.contains("diameter"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! that does not stays in the panel with its error. No egui here: this is what tests drive.
 
 use crate::species::{Species, SpeciesError};
-use bevy::platform::collections::HashMap;
+use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use std::path::Path;
 
@@ -131,8 +131,9 @@ pub enum SaveError {
     },
 }
 
-/// Writes `species` as RON to `path`, every field spelled out, keeping the comment lines
-/// that head an existing file (they describe the species).
+/// Writes `species` as RON to `path` in the shipped files' style: the fields that differ
+/// from the moon jelly's (`Species::aurelia`, what a missing field means), keeping the
+/// comment lines that head an existing file (they describe the species).
 pub fn write_species_file(path: &Path, species: &Species) -> Result<(), SaveError> {
     let io = |source| SaveError::Io {
         path: path.display().to_string(),
@@ -147,6 +148,27 @@ pub fn write_species_file(path: &Path, species: &Species) -> Result<(), SaveErro
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
         Err(e) => return Err(io(e)),
     };
-    let text = format!("{header}{}\n", species.to_ron()?);
+    let text = format!("{header}{}\n", differences_from_default(species)?);
     std::fs::write(path, text).map_err(io)
+}
+
+/// Pretty RON of `species` without the field lines equal to the default's. Pretty RON
+/// writes this flat struct one field per line; should that ever not hold, the result would
+/// not read back equal, and every field is written instead.
+fn differences_from_default(species: &Species) -> Result<String, SpeciesError> {
+    let full = species.to_ron()?;
+    let default = Species::default().to_ron()?;
+    let unchanged: HashSet<&str> = default.lines().collect();
+    let kept: Vec<&str> = full
+        .lines()
+        .filter(|l| {
+            let field = l.contains(':');
+            !field || l.trim_start().starts_with("name:") || !unchanged.contains(l)
+        })
+        .collect();
+    let short = kept.join("\n");
+    Ok(match Species::from_ron(&short) {
+        Ok(read) if read == *species => short,
+        _ => full,
+    })
 }
