@@ -100,6 +100,9 @@ pub(super) fn species_window(
                 ui.add(egui::Label::new(text).wrap());
             }
             ui.separator();
+            if let Some(note) = overridden(&settings) {
+                ui.add(egui::Label::new(egui::RichText::new(note).weak()).wrap());
+            }
             changed |= species_controls(ui, editor.draft_mut());
             if changed {
                 // An invalid draft is kept and shown above; the asset is untouched.
@@ -109,6 +112,24 @@ pub(super) fn species_window(
             level_of_detail(ui, &mut settings);
         });
     Ok(())
+}
+
+/// Says which species fields the shared settings override, so a slider that seems to do
+/// nothing is explained.
+fn overridden(settings: &JellyfishSettings) -> Option<String> {
+    let mut parts = Vec::new();
+    if let Some(grid) = settings.grid_override {
+        parts.push(format!("grid {grid}"));
+    }
+    if let Some(advection) = settings.advection_override {
+        parts.push(format!("{advection:?} advection"));
+    }
+    (!parts.is_empty()).then(|| {
+        format!(
+            "All jellyfish run with {} (below), whatever the species says.",
+            parts.join(" and ")
+        )
+    })
 }
 
 /// The plugin settings shared by all jellyfish. Written back only when edited: a change
