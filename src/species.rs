@@ -328,6 +328,11 @@ pub enum Advection {
     MacCormack,
 }
 
+impl Advection {
+    /// Every scheme, for pickers.
+    pub const ALL: [Advection; 2] = [Advection::SemiLagrangian, Advection::MacCormack];
+}
+
 /// Why a species (or a simulation built from one) was refused.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SpeciesError {

@@ -74,7 +74,8 @@ pub fn run(school: School, frames: usize, settings: JellyfishSettings, pools: Ta
     );
 }
 
-fn value(store: &DiagnosticsStore, path: &DiagnosticPath) -> f64 {
+/// The latest value of a diagnostic, 0 before the first.
+pub fn value(store: &DiagnosticsStore, path: &DiagnosticPath) -> f64 {
     store.get(path).and_then(|d| d.value()).unwrap_or(0.0)
 }
 

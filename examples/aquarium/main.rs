@@ -26,7 +26,7 @@ mod tank;
 #[cfg(feature = "editor")]
 mod ui;
 
-use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
+use bevy::diagnostic::DiagnosticsStore;
 use bevy::prelude::*;
 use bevy_jellyfish::JellyfishDiagnostics;
 use scene::AquariumPlugin;
@@ -169,17 +169,13 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     for _ in 0..frames_to_render {
         offscreen.update();
         let store = offscreen.world().resource::<DiagnosticsStore>();
-        let value = |p: &DiagnosticPath| store.get(p).and_then(|d| d.value()).unwrap_or(0.0);
-        simulation += value(&JellyfishDiagnostics::SIMULATION);
-        meshing += value(&JellyfishDiagnostics::MESHING);
+        simulation += bench::value(store, &JellyfishDiagnostics::SIMULATION);
+        meshing += bench::value(store, &JellyfishDiagnostics::MESHING);
     }
     let frames = frames_to_render.max(1) as f64;
     let wall = start.elapsed().as_secs_f64() * 1e3 / frames;
     let store = offscreen.world().resource::<DiagnosticsStore>();
-    let count = store
-        .get(&JellyfishDiagnostics::COUNT)
-        .and_then(|d| d.value())
-        .unwrap_or(0.0);
+    let count = bench::value(store, &JellyfishDiagnostics::COUNT);
     println!(
         "{} frames at {width}x{height}, {count} jellyfish: {wall:.1} ms per frame (render \
          included), simulation {:.2} ms, meshing {:.2} ms per frame (CPU, summed over jellyfish)",

@@ -140,16 +140,17 @@ fn level_of_detail(ui: &mut egui::Ui, settings: &mut ResMut<JellyfishSettings>) 
         egui::Grid::new("level of detail")
             .num_columns(2)
             .show(ui, |ui| {
-                ui.label("simulation rate");
-                ui.add(egui::Slider::new(&mut edited.simulation_hz, 8.0..=120.0).suffix(" Hz"));
+                ui.label("fewest steps per second")
+                    .on_hover_text("simulation_hz: frames blend between steps");
+                ui.add(egui::Slider::new(&mut edited.simulation_hz, 4.0..=64.0).suffix(" Hz"));
                 ui.end_row();
                 ui.label("grid override");
-                let mut overridden = edited.grid_override.is_some();
+                let mut on = edited.grid_override.is_some();
                 ui.horizontal(|ui| {
-                    ui.checkbox(&mut overridden, "");
+                    ui.checkbox(&mut on, "");
                     let mut grid = edited.grid_override.unwrap_or(64);
-                    ui.add_enabled(overridden, egui::Slider::new(&mut grid, 32..=160));
-                    edited.grid_override = overridden.then_some(grid);
+                    ui.add_enabled(on, egui::Slider::new(&mut grid, 32..=160));
+                    edited.grid_override = on.then_some(grid);
                 });
                 ui.end_row();
                 ui.label("advection override");
@@ -160,7 +161,7 @@ fn level_of_detail(ui: &mut egui::Ui, settings: &mut ResMut<JellyfishSettings>) 
                     })
                     .show_ui(ui, |ui| {
                         ui.selectable_value(&mut edited.advection_override, None, "per species");
-                        for a in [Advection::SemiLagrangian, Advection::MacCormack] {
+                        for a in Advection::ALL {
                             ui.selectable_value(
                                 &mut edited.advection_override,
                                 Some(a),

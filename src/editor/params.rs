@@ -50,64 +50,17 @@ macro_rules! param {
 const MM: f64 = 1e3;
 
 /// The sliders, in the order the panel shows them.
+#[rustfmt::skip]
 pub const SECTIONS: &[Section] = &[
     Section {
         title: "Muscles",
         params: &[
-            param!(
-                contraction_frequency,
-                "contraction frequency",
-                " Hz",
-                1.0,
-                0.1..=3.0,
-                false,
-                Real
-            ),
-            param!(
-                contraction_ratio,
-                "contracted length",
-                "",
-                1.0,
-                0.3..=1.0,
-                false,
-                Real
-            ),
-            param!(
-                contraction_duty,
-                "contraction duty",
-                "",
-                1.0,
-                0.1..=0.8,
-                false,
-                Real
-            ),
-            param!(
-                expansion_stagger,
-                "expansion stagger",
-                "",
-                1.0,
-                0.0..=1.0,
-                false,
-                Real
-            ),
-            param!(
-                muscle_modulus,
-                "muscle modulus",
-                " Pa",
-                1.0,
-                1e4..=4e6,
-                true,
-                Real
-            ),
-            param!(
-                muscle_cross_section,
-                "muscle cross-section",
-                "",
-                1.0,
-                1e-6..=1e-3,
-                true,
-                Real
-            ),
+            param!(contraction_frequency, "contraction frequency", " Hz", 1.0, 0.1..=3.0, false, Real),
+            param!(contraction_ratio, "contracted length", "", 1.0, 0.3..=1.0, false, Real),
+            param!(contraction_duty, "contraction duty", "", 1.0, 0.1..=0.8, false, Real),
+            param!(expansion_stagger, "expansion stagger", "", 1.0, 0.0..=1.0, false, Real),
+            param!(muscle_modulus, "muscle modulus", " Pa", 1.0, 1e4..=4e6, true, Real),
+            param!(muscle_cross_section, "muscle cross-section", "", 1.0, 1e-6..=1e-3, true, Real),
         ],
     },
     Section {
@@ -115,217 +68,49 @@ pub const SECTIONS: &[Section] = &[
         params: &[
             param!(diameter, "diameter", " mm", MM, 5.0..=200.0, true, Real),
             param!(height, "height", " mm", MM, 3.0..=200.0, true, Real),
-            param!(
-                thickness,
-                "mesoglea thickness",
-                " mm",
-                MM,
-                0.5..=30.0,
-                true,
-                Real
-            ),
-            param!(
-                margin_thickness_ratio,
-                "margin thickness",
-                "",
-                1.0,
-                0.05..=1.0,
-                false,
-                Real
-            ),
-            param!(
-                elastic_modulus,
-                "mesoglea stiffness",
-                " Pa",
-                1.0,
-                100.0..=2e4,
-                true,
-                Real
-            ),
-            param!(
-                angular_stiffness,
-                "bending stiffness",
-                " N·m/rad",
-                1.0,
-                1e-5..=1e-1,
-                true,
-                Real
-            ),
+            param!(thickness, "mesoglea thickness", " mm", MM, 0.5..=30.0, true, Real),
+            param!(margin_thickness_ratio, "margin thickness", "", 1.0, 0.05..=1.0, false, Real),
+            param!(elastic_modulus, "mesoglea stiffness", " Pa", 1.0, 100.0..=2e4, true, Real),
+            param!(angular_stiffness, "bending stiffness", " N·m/rad", 1.0, 1e-5..=1e-1, true, Real),
         ],
     },
     Section {
         title: "Tentacles",
         params: &[
-            param!(
-                tentacle_count,
-                "tentacles",
-                "",
-                1.0,
-                0.0..=96.0,
-                false,
-                Count
-            ),
-            param!(
-                tentacle_length,
-                "length",
-                " mm",
-                MM,
-                0.0..=300.0,
-                false,
-                Real
-            ),
+            param!(tentacle_count, "tentacles", "", 1.0, 0.0..=96.0, false, Count),
+            param!(tentacle_length, "length", " mm", MM, 0.0..=300.0, false, Real),
             param!(tentacle_radius, "radius", " mm", MM, 0.05..=3.0, true, Real),
-            param!(
-                tentacle_cross_section,
-                "spring cross-section",
-                "",
-                1.0,
-                1e-4..=1.0,
-                true,
-                Real
-            ),
+            param!(tentacle_cross_section, "spring cross-section", "", 1.0, 1e-4..=1.0, true, Real),
         ],
     },
     Section {
         title: "Surface variation",
         params: &[
-            param!(
-                structural_scale,
-                "structural scale",
-                "",
-                1.0,
-                0.0..=1.0,
-                false,
-                Real
-            ),
-            param!(
-                structural_frequency,
-                "structural lobes",
-                "",
-                1.0,
-                0.0..=24.0,
-                false,
-                Real
-            ),
-            param!(
-                compression_scale,
-                "compression scale",
-                "",
-                1.0,
-                0.0..=0.5,
-                false,
-                Real
-            ),
-            param!(
-                compression_frequency,
-                "compression ripples",
-                "",
-                1.0,
-                0.0..=24.0,
-                false,
-                Real
-            ),
-            param!(
-                unstructured_scale,
-                "noise scale",
-                "",
-                1.0,
-                0.0..=4.0,
-                false,
-                Real
-            ),
-            param!(
-                noise_frequency_lat,
-                "noise frequency, latitude",
-                "",
-                1.0,
-                0.0..=8.0,
-                false,
-                Real
-            ),
-            param!(
-                noise_frequency_lon,
-                "noise frequency, longitude",
-                "",
-                1.0,
-                0.0..=24.0,
-                false,
-                Real
-            ),
-            param!(
-                noise_frequency_time,
-                "noise frequency, time",
-                " /s",
-                1.0,
-                0.0..=0.2,
-                false,
-                Real
-            ),
+            param!(structural_scale, "structural scale", "", 1.0, 0.0..=1.0, false, Real),
+            param!(structural_frequency, "structural lobes", "", 1.0, 0.0..=24.0, false, Real),
+            param!(compression_scale, "compression scale", "", 1.0, 0.0..=0.5, false, Real),
+            param!(compression_frequency, "compression ripples", "", 1.0, 0.0..=24.0, false, Real),
+            param!(unstructured_scale, "noise scale", "", 1.0, 0.0..=4.0, false, Real),
+            param!(noise_frequency_lat, "noise frequency, latitude", "", 1.0, 0.0..=8.0, false, Real),
+            param!(noise_frequency_lon, "noise frequency, longitude", "", 1.0, 0.0..=24.0, false, Real),
+            param!(noise_frequency_time, "noise frequency, time", " /s", 1.0, 0.0..=0.2, false, Real),
         ],
     },
     Section {
         title: "Water",
         params: &[
-            param!(
-                grid_resolution,
-                "grid cells per side",
-                "",
-                1.0,
-                32.0..=200.0,
-                false,
-                Count
-            ),
-            param!(
-                domain_diameters,
-                "domain",
-                " diameters",
-                1.0,
-                4.0..=20.0,
-                false,
-                Real
-            ),
-            param!(
-                viscosity,
-                "viscosity",
-                " Pa·s",
-                1.0,
-                1e-4..=1e-1,
-                true,
-                Real
-            ),
-            param!(
-                density,
-                "density",
-                " kg/m³",
-                1.0,
-                900.0..=1200.0,
-                false,
-                Real
-            ),
+            param!(grid_resolution, "grid cells per side", "", 1.0, 32.0..=200.0, false, Count),
+            param!(domain_diameters, "domain", " diameters", 1.0, 4.0..=20.0, false, Real),
+            param!(viscosity, "viscosity", " Pa·s", 1.0, 1e-4..=1e-1, true, Real),
+            param!(density, "density", " kg/m³", 1.0, 900.0..=1200.0, false, Real),
         ],
     },
     Section {
         title: "Mesh",
         params: &[
             param!(mesh_rings, "rings", "", 1.0, 4.0..=64.0, false, Count),
-            param!(
-                mesh_segments,
-                "segments",
-                "",
-                1.0,
-                8.0..=128.0,
-                false,
-                Count
-            ),
-            param!(
-                tentacle_sides,
-                "tentacle sides",
-                "",
-                1.0,
-                3.0..=12.0,
-                false,
-                Count
-            ),
+            param!(mesh_segments, "segments", "", 1.0, 8.0..=128.0, false, Count),
+            param!(tentacle_sides, "tentacle sides", "", 1.0, 3.0..=12.0, false, Count),
         ],
     },
     Section {
@@ -415,8 +200,9 @@ fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
     egui::ComboBox::from_id_salt("advection")
         .selected_text(format!("{advection:?}"))
         .show_ui(ui, |ui| {
-            ui.selectable_value(advection, Advection::SemiLagrangian, "SemiLagrangian");
-            ui.selectable_value(advection, Advection::MacCormack, "MacCormack");
+            for scheme in Advection::ALL {
+                ui.selectable_value(advection, scheme, format!("{scheme:?}"));
+            }
         });
     ui.end_row();
     *advection != before
