@@ -1,10 +1,12 @@
 //! Cost of the slice simulation (DESIGN.md section 6), on one core.
 //!
-//! - `coupled_step/N`: one coupled step (fluid + body + coupling) at grid N;
+//! - `coupled_step/N`: one fixed step of the default species (fluid + body + coupling) at
+//!   grid N (60 is the default, ten cells per diameter; 100 the paper's grid);
 //! - `stam_step/N`: the baseline, a plain Stam fluid step written straightforwardly
 //!   (collocated grid, semi-Lagrangian advection, 20 Gauss–Seidel sweeps);
-//! - and, printed after the criterion runs, simulated seconds per wall-clock second for
-//!   the default species at grids 64 and 100, and the coupled/Stam cost ratio.
+//! - and, printed after the criterion runs: µs per step and per simulated second at the
+//!   default grid and at 100, simulated seconds per wall-clock second, and the
+//!   coupled/Stam cost ratio.
 //!
 //! `cargo bench --no-default-features --bench slice_step`
 
@@ -26,14 +28,12 @@ fn warmed_up(grid: u32) -> SliceSim {
 
 fn coupled_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("coupled_step");
-    for grid in [50, 64, 100] {
+    for grid in [60, 90, 100] {
         let mut sim = warmed_up(grid);
+        let dt = SliceSim::step_length(sim.species());
         group.bench_with_input(BenchmarkId::from_parameter(grid), &grid, |b, _| {
-            b.iter(|| {
-                // At most the stable step, so this is exactly one coupled step.
-                let dt = sim.max_step();
-                sim.advance(black_box(dt));
-            })
+            // One fixed step's worth of time: exactly one step.
+            b.iter(|| sim.advance(black_box(dt)))
         });
     }
     group.finish();
@@ -41,7 +41,7 @@ fn coupled_step(c: &mut Criterion) {
 
 fn stam_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("stam_step");
-    for grid in [50, 64, 100] {
+    for grid in [60, 90, 100] {
         let mut fluid = StamFluid::new(grid);
         group.bench_with_input(BenchmarkId::from_parameter(grid), &grid, |b, _| {
             b.iter(|| fluid.step(black_box(0.02)))
@@ -50,46 +50,42 @@ fn stam_step(c: &mut Criterion) {
     group.finish();
 }
 
-/// Simulated seconds per wall second, and the cost of a coupled step against Stam's.
+/// Per step and per simulated second, and the cost of a coupled step against Stam's.
 fn report(_: &mut Criterion) {
     println!("\n== slice simulation throughput (one core) ==");
-    for grid in [64, 100] {
+    for grid in [60, 100] {
         let mut sim = warmed_up(grid);
         let (t0, steps0) = (sim.time(), sim.steps());
         let start = Instant::now();
         while start.elapsed().as_secs_f32() < 2.0 {
             sim.advance(sim.species().period());
         }
-        let wall = start.elapsed().as_secs_f32();
+        let wall = start.elapsed().as_secs_f64();
         let steps = sim.steps() - steps0;
+        let simulated = (sim.time() - t0) as f64;
+        let mut stam = StamFluid::new(grid as usize);
+        let baseline = time_of(|| stam.step(0.02));
         println!(
-            "grid {grid:3}: {:6.1} simulated s per wall s ({} steps, {:.1} us/step, {:.1} ms/step simulated)",
-            (sim.time() - t0) / wall,
+            "grid {grid:3}: {:.0} us per step, {:.1} ms per simulated s, {:.0} simulated s per \
+             wall s ({} steps of {:.1} ms); plain Stam step {:.0} us, ratio {:.2}",
+            wall * 1e6 / steps as f64,
+            wall * 1e3 / simulated,
+            simulated / wall,
             steps,
-            wall * 1e6 / steps as f32,
-            (sim.time() - t0) * 1e3 / steps as f32,
+            simulated * 1e3 / steps as f64,
+            baseline * 1e6,
+            wall / steps as f64 / baseline,
         );
     }
-    let mut sim = warmed_up(100);
-    let mut stam = StamFluid::new(100);
-    let time = |f: &mut dyn FnMut()| {
-        let start = Instant::now();
-        for _ in 0..400 {
-            f();
-        }
-        start.elapsed().as_secs_f64() / 400.0
-    };
-    let coupled = time(&mut || {
-        let dt = sim.max_step();
-        sim.advance(dt)
-    });
-    let baseline = time(&mut || stam.step(0.02));
-    println!(
-        "grid 100: coupled step {:.0} us, plain Stam step {:.0} us, ratio {:.2}",
-        coupled * 1e6,
-        baseline * 1e6,
-        coupled / baseline
-    );
+}
+
+/// Mean wall time of `f` over 400 calls, s.
+fn time_of(mut f: impl FnMut()) -> f64 {
+    let start = Instant::now();
+    for _ in 0..400 {
+        f();
+    }
+    start.elapsed().as_secs_f64() / 400.0
 }
 
 /// Stam's "Real-Time Fluid Dynamics for Games" velocity step, as most people write it:

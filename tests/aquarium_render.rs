@@ -168,7 +168,6 @@ fn schools_stay_in_the_tank() {
         JellyfishPlugin {
             settings: JellyfishSettings {
                 mesh_resolution_scale: 0.25,
-                ..scene::settings()
             },
         },
         school::plugin,

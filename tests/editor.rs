@@ -119,9 +119,7 @@ fn app() -> (App, Handle<Species>, Entity) {
         TransformPlugin,
         JellyfishPlugin {
             settings: JellyfishSettings {
-                grid_override: Some(48),
                 mesh_resolution_scale: 0.3,
-                ..default()
             },
         },
     ))

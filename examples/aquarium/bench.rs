@@ -1,5 +1,5 @@
 //! The headless aquarium benchmark: the schools swim and mesh as in the windowed app, with
-//! no renderer, at 60 simulated frames per second. It prints what a frame costs.
+//! no renderer, at a fixed frame rate (60 by default). It prints what a frame costs.
 
 use crate::school::School;
 use bevy::asset::AssetPlugin;
@@ -11,67 +11,95 @@ use bevy_jellyfish::plugin::JellyfishSlice;
 use bevy_jellyfish::{JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
-/// Runs `frames` frames after a warm-up and prints wall and CPU time per frame.
-pub fn run(school: School, frames: usize, settings: JellyfishSettings, pools: TaskPoolPlugin) {
+/// How long slices may take to start before the bench gives up, s.
+const READY_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// Runs `frames` frames at `fps` after a warm-up and prints wall and CPU time per frame,
+/// the spread of frame times, and the mesh data handed to the renderer. Errors if the
+/// schools never start (a species that does not load).
+pub fn run(
+    school: School,
+    frames: usize,
+    fps: f64,
+    settings: JellyfishSettings,
+    pools: TaskPoolPlugin,
+) -> Result<(), String> {
     let mut app = App::new();
     app.add_plugins((
         MinimalPlugins.set(pools),
         AssetPlugin::default(),
         MeshPlugin,
         TransformPlugin,
-        JellyfishPlugin {
-            settings: settings.clone(),
-        },
+        JellyfishPlugin { settings },
         crate::school::plugin,
     ))
     .insert_resource(school)
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / 60.0,
+        1.0 / fps,
     )));
     app.finish();
     app.cleanup();
-    // Load the species and build every slice (a slice plans its solver when created).
+    // Load the species and build every slice.
     let expected = (school.per_species * crate::school::SPECIES.len()) as f64;
     let start = Instant::now();
+    let mut warm_up_frames = 0;
     while count(&app) < expected {
         app.update();
-        if start.elapsed() > Duration::from_secs(120) {
-            eprintln!(
-                "bench: only {} of {expected} jellyfish started",
-                count(&app)
-            );
-            break;
+        warm_up_frames += 1;
+        if start.elapsed() > READY_TIMEOUT {
+            return Err(format!(
+                "only {} of {expected} jellyfish started in {} s: do the species files in \
+                 {}/assets/species load?",
+                count(&app),
+                READY_TIMEOUT.as_secs(),
+                std::env::current_dir().map_or("?".into(), |d| d.display().to_string()),
+            ));
         }
     }
-    for _ in 0..60 {
+    println!(
+        "ready: {expected} jellyfish started in {:.2} s ({warm_up_frames} frames)",
+        start.elapsed().as_secs_f64()
+    );
+    for _ in 0..(fps as usize) {
         app.update();
     }
-    let (mut simulation, mut meshing) = (0.0, 0.0);
+    let (mut simulation, mut meshing, mut mesh_data) = (0.0, 0.0, 0.0);
     let steps_before = steps(&mut app);
+    let mut frame_ms = Vec::with_capacity(frames);
     let start = Instant::now();
     for _ in 0..frames {
+        let frame = Instant::now();
         app.update();
+        frame_ms.push(frame.elapsed().as_secs_f64() * 1e3);
         let store = app.world().resource::<DiagnosticsStore>();
         simulation += value(store, &JellyfishDiagnostics::SIMULATION);
         meshing += value(store, &JellyfishDiagnostics::MESHING);
+        mesh_data += value(store, &JellyfishDiagnostics::MESH_DATA);
     }
     let n = frames.max(1) as f64;
-    let substeps_per_second =
-        (steps(&mut app) - steps_before) as f64 / count(&app).max(1.0) / (n / 60.0);
+    let jellyfish = count(&app).max(1.0);
+    let steps_per_second = (steps(&mut app) - steps_before) as f64 / jellyfish / (n / fps);
     let wall = start.elapsed().as_secs_f64() * 1e3 / n;
     let threads = bevy::tasks::ComputeTaskPool::get().thread_num();
     println!(
-        "headless aquarium: {} jellyfish, grid {}, {substeps_per_second:.1} substeps per \
-         jellyfish-second, {frames} frames at 60 fps on {threads} threads: {wall:.2} ms wall \
-         per frame; CPU per frame: simulation {:.2} ms, meshing {:.2} ms ({:.3} ms per jellyfish)",
+        "headless aquarium: {} jellyfish, {fps} fps, {threads} threads, {steps_per_second:.1} \
+         steps per jellyfish-second, {frames} frames: {wall:.2} ms wall per frame; CPU per \
+         frame: simulation {:.2} ms, meshing {:.2} ms ({:.3} ms per jellyfish)",
         count(&app),
-        settings
-            .grid_override
-            .map_or("per species".into(), |g| g.to_string()),
         simulation / n,
         meshing / n,
-        (simulation + meshing) / n / count(&app).max(1.0),
+        (simulation + meshing) / n / jellyfish,
     );
+    frame_ms.sort_by(f64::total_cmp);
+    let p99 = frame_ms[((frame_ms.len() as f64 * 0.99) as usize).min(frame_ms.len() - 1)];
+    println!(
+        "frame time: mean {:.2} ms, p99 {p99:.2} ms",
+        frame_ms.iter().sum::<f64>() / n
+    );
+    // Every jellyfish runs its full slice until levels of detail exist.
+    println!("tiers: near {}, mid 0, far 0", count(&app));
+    println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
+    Ok(())
 }
 
 /// The latest value of a diagnostic, 0 before the first.

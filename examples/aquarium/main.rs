@@ -13,7 +13,8 @@
 //! writes the last one and exits.
 //!
 //! The headless benchmark, no renderer at all: `cargo run --release --example aquarium --
-//! --bench [--count N] [--frames 600]` prints the wall and CPU time of a 60 Hz frame.
+//! --bench [--count N] [--frames 600] [--fps 60]` prints the wall and CPU time of a frame,
+//! the spread of frame times and the mesh data handed to the renderer.
 
 mod bench;
 mod camera;
@@ -40,6 +41,8 @@ struct Args {
     bench: bool,
     /// Frames to render or to benchmark (default 120 and 600).
     frames: Option<usize>,
+    /// Frames per second of the benchmark.
+    fps: f64,
     size: (u32, u32),
 }
 
@@ -53,6 +56,7 @@ impl Args {
             screenshot: None,
             bench: false,
             frames: None,
+            fps: 60.0,
             size: (1280, 720),
         };
         let mut it = std::env::args().skip(1);
@@ -74,6 +78,13 @@ impl Args {
                     let v = value()?;
                     args.frames = Some(v.parse().map_err(|_| bad(&v))?);
                 }
+                "--fps" => {
+                    let v = value()?;
+                    args.fps = v.parse().map_err(|_| bad(&v))?;
+                    if !(args.fps.is_finite() && args.fps > 0.0) {
+                        return Err(bad(&v));
+                    }
+                }
                 "--size" => {
                     let v = value()?;
                     let (w, h) = v.split_once('x').ok_or_else(|| bad(&v))?;
@@ -86,7 +97,7 @@ impl Args {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
                          [--screenshot out.png [--frames 120] [--size 1280x720]] \
-                         [--bench [--frames 600]]"
+                         [--bench [--frames 600] [--fps 60]]"
                     ));
                 }
             }
@@ -104,13 +115,19 @@ fn main() -> ExitCode {
         }
     };
     if args.bench {
-        bench::run(
+        return match bench::run(
             args.school,
             args.frames.unwrap_or(600),
+            args.fps,
             scene::settings(),
             task_pools(),
-        );
-        return ExitCode::SUCCESS;
+        ) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("aquarium --bench: {e}");
+                ExitCode::FAILURE
+            }
+        };
     }
     if let Some(path) = &args.screenshot {
         return match picture(&args, path) {

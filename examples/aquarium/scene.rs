@@ -3,7 +3,6 @@
 
 use crate::school::School;
 use bevy::prelude::*;
-use bevy_jellyfish::species::Advection;
 use bevy_jellyfish::{JellyfishPlugin, JellyfishSettings};
 
 pub struct AquariumPlugin {
@@ -26,13 +25,7 @@ impl Plugin for AquariumPlugin {
     }
 }
 
-/// The aquarium's level of detail: a school at a frame rate. At grid 64 the default
-/// semi-Lagrangian advection's numerical viscosity nearly stops the bells; MacCormack's
-/// keeps them swimming (`examples/lod.rs`).
+/// The aquarium's drawing settings: the physics is each species' own.
 pub fn settings() -> JellyfishSettings {
-    JellyfishSettings {
-        grid_override: Some(64),
-        advection_override: Some(Advection::MacCormack),
-        ..default()
-    }
+    JellyfishSettings::default()
 }

@@ -216,6 +216,7 @@ fn report(runs: &[Run], o: &Options) {
                 markers: true,
             })
             .collect(),
+        ..Default::default()
     };
     let palette = [
         [68, 1, 84],
@@ -246,6 +247,7 @@ fn report(runs: &[Run], o: &Options) {
                 markers: false,
             })
             .collect(),
+        ..Default::default()
     };
     let png = o.out.join("sweep.png");
     match plot::write_png(&png, &[distance, trajectories], 2, 640, 440) {

@@ -42,6 +42,8 @@ pub struct Chart {
     pub x_label: String,
     pub y_label: String,
     pub series: Vec<Series>,
+    /// One unit is as long on both axes (shapes keep their proportions).
+    pub equal_aspect: bool,
 }
 
 /// Renders several charts side by side, `cols` per row, each `chart_w` x
@@ -126,6 +128,25 @@ fn draw_chart(cv: &mut Canvas, chart: &Chart, cell: Rect) {
     );
     if plot.w < 16 || plot.h < 16 {
         return;
+    }
+    let (mut x, mut y) = (x, y);
+    if chart.equal_aspect {
+        // Widen the axis with fewer units per pixel about its centre.
+        let (ux, uy) = (
+            (x.max - x.min) / plot.w as f64,
+            (y.max - y.min) / plot.h as f64,
+        );
+        // Keep about as many ticks per pixel as the fitted axes had.
+        let widen = |a: &mut Axis, span: f64, target: i32| {
+            let c = 0.5 * (a.min + a.max);
+            (a.min, a.max) = (c - 0.5 * span, c + 0.5 * span);
+            a.step = nice_step(span / target.clamp(2, 10) as f64);
+        };
+        if ux < uy {
+            widen(&mut x, uy * plot.w as f64, x_target);
+        } else {
+            widen(&mut y, ux * plot.h as f64, y_target);
+        }
     }
     let f = Frame { plot, x, y };
     draw_grid(cv, &f, &y_ticks);
@@ -344,8 +365,8 @@ impl Axis {
 
     fn ticks(&self) -> Vec<f64> {
         let (a, b) = (
-            (self.min / self.step).round() as i64,
-            (self.max / self.step).round() as i64,
+            (self.min / self.step - 1e-9).ceil() as i64,
+            (self.max / self.step + 1e-9).floor() as i64,
         );
         (a..=b).map(|i| i as f64 * self.step).collect()
     }

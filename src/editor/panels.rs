@@ -4,7 +4,7 @@ use super::EditorConfig;
 use super::params::species_controls;
 use super::session::SpeciesEditor;
 use crate::plugin::{JellyfishDiagnostics, JellyfishSettings};
-use crate::species::{Advection, Species};
+use crate::species::Species;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore, FrameTimeDiagnosticsPlugin};
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};
@@ -100,9 +100,6 @@ pub(super) fn species_window(
                 ui.add(egui::Label::new(text).wrap());
             }
             ui.separator();
-            if let Some(note) = overridden(&settings) {
-                ui.add(egui::Label::new(egui::RichText::new(note).weak()).wrap());
-            }
             changed |= species_controls(ui, editor.draft_mut());
             if changed {
                 // An invalid draft is kept and shown above; the asset is untouched.
@@ -114,62 +111,14 @@ pub(super) fn species_window(
     Ok(())
 }
 
-/// Says which species fields the shared settings override, so a slider that seems to do
-/// nothing is explained.
-fn overridden(settings: &JellyfishSettings) -> Option<String> {
-    let mut parts = Vec::new();
-    if let Some(grid) = settings.grid_override {
-        parts.push(format!("grid {grid}"));
-    }
-    if let Some(advection) = settings.advection_override {
-        parts.push(format!("{advection:?} advection"));
-    }
-    (!parts.is_empty()).then(|| {
-        format!(
-            "All jellyfish run with {} (below), whatever the species says.",
-            parts.join(" and ")
-        )
-    })
-}
-
-/// The plugin settings shared by all jellyfish. Written back only when edited: a change
-/// re-applies every species.
+/// The plugin settings shared by all jellyfish (drawing only: the physics belongs to each
+/// species). Written back only when edited.
 fn level_of_detail(ui: &mut egui::Ui, settings: &mut ResMut<JellyfishSettings>) {
     let mut edited = settings.as_ref().clone();
     egui::CollapsingHeader::new("All jellyfish").show(ui, |ui| {
         egui::Grid::new("level of detail")
             .num_columns(2)
             .show(ui, |ui| {
-                ui.label("fewest steps per second")
-                    .on_hover_text("simulation_hz: frames blend between steps");
-                ui.add(egui::Slider::new(&mut edited.simulation_hz, 4.0..=64.0).suffix(" Hz"));
-                ui.end_row();
-                ui.label("grid override");
-                let mut on = edited.grid_override.is_some();
-                ui.horizontal(|ui| {
-                    ui.checkbox(&mut on, "");
-                    let mut grid = edited.grid_override.unwrap_or(64);
-                    ui.add_enabled(on, egui::Slider::new(&mut grid, 32..=160));
-                    edited.grid_override = on.then_some(grid);
-                });
-                ui.end_row();
-                ui.label("advection override");
-                egui::ComboBox::from_id_salt("advection override")
-                    .selected_text(match edited.advection_override {
-                        None => "per species".to_string(),
-                        Some(a) => format!("{a:?}"),
-                    })
-                    .show_ui(ui, |ui| {
-                        ui.selectable_value(&mut edited.advection_override, None, "per species");
-                        for a in Advection::ALL {
-                            ui.selectable_value(
-                                &mut edited.advection_override,
-                                Some(a),
-                                format!("{a:?}"),
-                            );
-                        }
-                    });
-                ui.end_row();
                 ui.label("mesh detail");
                 ui.add(egui::Slider::new(
                     &mut edited.mesh_resolution_scale,

@@ -3,7 +3,7 @@
 //!
 //! Ranges are for dragging; typed values may leave them, and validation then decides.
 
-use crate::species::{Advection, Species};
+use crate::species::{Advection, Kernel, Species};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -60,7 +60,7 @@ pub const SECTIONS: &[Section] = &[
             param!(contraction_duty, "contraction duty", "", 1.0, 0.1..=0.8, false, Real),
             param!(expansion_stagger, "expansion stagger", "", 1.0, 0.0..=1.0, false, Real),
             param!(muscle_modulus, "muscle modulus", " Pa", 1.0, 1e4..=4e6, true, Real),
-            param!(muscle_cross_section, "muscle cross-section", "", 1.0, 1e-6..=1e-3, true, Real),
+            param!(muscle_cross_section, "muscle cross-section", "", 1.0, 1e-4..=0.1, true, Real),
         ],
     },
     Section {
@@ -72,12 +72,14 @@ pub const SECTIONS: &[Section] = &[
             param!(margin_thickness_ratio, "margin thickness", "", 1.0, 0.05..=1.0, false, Real),
             param!(elastic_modulus, "mesoglea stiffness", " Pa", 1.0, 100.0..=2e4, true, Real),
             param!(angular_stiffness, "bending stiffness", " N·m/rad", 1.0, 1e-5..=1e-1, true, Real),
+            param!(hoop_cross_section, "hoop cross-section", "", 1.0, 1e-4..=0.1, true, Real),
+            param!(mesoglea_resilience, "mesoglea resilience", "", 1.0, 0.05..=1.0, false, Real),
         ],
     },
     Section {
         title: "Tentacles",
         params: &[
-            param!(tentacle_count, "tentacles", "", 1.0, 0.0..=96.0, false, Count),
+            param!(tentacle_count, "tentacles", "", 1.0, 0.0..=256.0, false, Count),
             param!(tentacle_length, "length", " mm", MM, 0.0..=300.0, false, Real),
             param!(tentacle_radius, "radius", " mm", MM, 0.05..=3.0, true, Real),
             param!(tentacle_cross_section, "spring cross-section", "", 1.0, 1e-4..=1.0, true, Real),
@@ -101,6 +103,7 @@ pub const SECTIONS: &[Section] = &[
         params: &[
             param!(grid_resolution, "grid cells per side", "", 1.0, 32.0..=200.0, false, Count),
             param!(domain_diameters, "domain", " diameters", 1.0, 4.0..=20.0, false, Real),
+            param!(boundary_width, "boundary width", " diameters", 1.0, 0.1..=1.0, false, Real),
             param!(viscosity, "viscosity", " Pa·s", 1.0, 1e-4..=1e-1, true, Real),
             param!(density, "density", " kg/m³", 1.0, 900.0..=1200.0, false, Real),
         ],
@@ -123,6 +126,7 @@ pub const SECTIONS: &[Section] = &[
 pub const OTHER_FIELDS: &[&str] = &[
     "name",
     "advection",
+    "kernel",
     "structural_abs",
     "bell_color",
     "glow_color",
@@ -173,7 +177,10 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= ui.checkbox(&mut species.structural_abs, "").changed();
                                 ui.end_row();
                             }
-                            "Water" => changed |= advection(ui, &mut species.advection),
+                            "Water" => {
+                                changed |= advection(ui, &mut species.advection);
+                                changed |= kernel(ui, &mut species.kernel);
+                            }
                             "Looks" => {
                                 ui.label("bell colour").on_hover_text("bell_color");
                                 changed |= ui
@@ -194,8 +201,10 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
 }
 
 fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
-    ui.label("advection")
-        .on_hover_text("advection: MacCormack has less numerical viscosity, so coarse grids swim");
+    ui.label("advection").on_hover_text(
+        "advection: semi-Lagrangian is the steadiest; MacCormack and Cubic have less \
+         numerical viscosity",
+    );
     let before = *advection;
     egui::ComboBox::from_id_salt("advection")
         .selected_text(format!("{advection:?}"))
@@ -206,4 +215,21 @@ fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
         });
     ui.end_row();
     *advection != before
+}
+
+fn kernel(ui: &mut egui::Ui, kernel: &mut Kernel) -> bool {
+    ui.label("kernel").on_hover_text(
+        "kernel: how the bell meets the water; Roma3 does not see the grid, Bilinear is the \
+         paper's",
+    );
+    let before = *kernel;
+    egui::ComboBox::from_id_salt("kernel")
+        .selected_text(format!("{kernel:?}"))
+        .show_ui(ui, |ui| {
+            for k in Kernel::ALL {
+                ui.selectable_value(kernel, k, format!("{k:?}"));
+            }
+        });
+    ui.end_row();
+    *kernel != before
 }

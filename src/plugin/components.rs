@@ -64,22 +64,16 @@ fn hash(mut x: u32) -> u32 {
     x ^ (x >> 16)
 }
 
-/// The simulated slice and its last two steps, which frames blend between.
+/// The simulated slice and its last few fixed steps, which frames blend between.
 ///
 /// Empty until the species asset has loaded.
 #[derive(Component, Default)]
 pub struct JellyfishSlice {
     pub(crate) sim: Option<SliceSim>,
-    /// The species as simulated (after [`JellyfishSettings`](super::JellyfishSettings)).
+    /// The species as simulated: the last valid one it was given.
     pub(crate) species: Species,
     pub(crate) seed: u32,
-    /// Fixed ticks since the last step.
-    pub(crate) ticks: u32,
-    /// Fixed ticks between steps, chosen for the species
-    /// ([`JellyfishSettings::ticks_per_step`](super::JellyfishSettings::ticks_per_step)).
-    pub(crate) ticks_per_step: u32,
-    pub(crate) previous: Snapshot,
-    pub(crate) current: Snapshot,
+    pub(crate) history: SliceHistory,
 }
 
 impl JellyfishSlice {
@@ -99,47 +93,108 @@ impl JellyfishSlice {
 
     /// Swim distance after the last step, m.
     pub fn swim_distance(&self) -> f32 {
-        self.current.swim
+        self.history.newest().map_or(0.0, |s| s.swim)
     }
 
-    /// A domain point of the current step in the mesh's local frame (metres, origin at the
+    /// A domain point of the newest step in the mesh's local frame (metres, origin at the
     /// bell's centroid): for overlays drawn over the jellyfish.
     pub fn to_local(&self, p: Vec2) -> Vec3 {
-        (p - self.current.centroid).extend(0.0)
+        let centroid = self.history.newest().map_or(Vec2::ZERO, |s| s.centroid);
+        (p - centroid).extend(0.0)
     }
 
-    /// How far the frame is from the previous step to the current one, in [0, 1).
-    pub(crate) fn blend(&self, overstep_fraction: f32) -> f32 {
-        ((self.ticks as f32 + overstep_fraction) / self.ticks_per_step.max(1) as f32)
-            .clamp(0.0, 1.0)
+    /// The slice time a frame shows, s: the time added to the slice (`overstep` past the
+    /// last fixed tick of `tick` seconds), less one step and one tick, so that two stored
+    /// steps always bracket it and a frame never waits for a step.
+    pub fn display_time(&self, overstep: f64, tick: f64) -> f64 {
+        let Some(sim) = &self.sim else {
+            return 0.0;
+        };
+        let clock = sim.clock();
+        clock.added() + overstep - clock.step() - tick
     }
 
-    /// Starts the slice; the seed picks which tick it steps on, spreading the load.
-    pub(crate) fn start(
-        &mut self,
-        sim: SliceSim,
-        species: Species,
-        seed: u32,
-        ticks_per_step: u32,
-    ) {
-        self.current.capture(&sim);
-        self.previous.clone_from(&self.current);
+    /// Starts the slice; its clock's start (the phase offset) picks the ticks it steps on.
+    pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32) {
+        self.history.restart(&sim);
         self.sim = Some(sim);
         self.species = species;
         self.seed = seed;
-        self.ticks_per_step = ticks_per_step.max(1);
-        self.ticks = seed % self.ticks_per_step;
     }
 }
 
-/// One step's slice, relative to the bell's centroid so that recentring never shows.
+/// The last few fixed steps of a slice, oldest first: enough to bracket any time a frame
+/// shows ([`JellyfishSlice::display_time`]).
+#[derive(Default)]
+pub(crate) struct SliceHistory {
+    states: std::collections::VecDeque<Snapshot>,
+    /// Recycled snapshots, so a step allocates nothing.
+    spare: Vec<Snapshot>,
+}
+
+impl SliceHistory {
+    /// Keeps this many states: the bracket for a lag of one step and one tick, when one
+    /// tick can hold several steps.
+    fn capacity(sim: &SliceSim, tick: f64) -> usize {
+        3 + (tick / sim.clock().step()).ceil().min(64.0) as usize
+    }
+
+    /// Forgets the past: the slice's present state only (a new or rebuilt slice).
+    pub fn restart(&mut self, sim: &SliceSim) {
+        self.spare.extend(self.states.drain(..));
+        self.record(sim, 0.0);
+    }
+
+    /// Records the slice's state after a step, dropping what a frame can no longer show.
+    pub fn record(&mut self, sim: &SliceSim, tick: f64) {
+        let mut snapshot = self.spare.pop().unwrap_or_default();
+        snapshot.capture(sim);
+        self.states.push_back(snapshot);
+        while self.states.len() > Self::capacity(sim, tick) {
+            if let Some(old) = self.states.pop_front() {
+                self.spare.push(old);
+            }
+        }
+    }
+
+    pub fn newest(&self) -> Option<&Snapshot> {
+        self.states.back()
+    }
+
+    /// The two states around time `t` and how far between them it is, in [0, 1]; held at
+    /// the ends if `t` is outside the history.
+    pub fn bracket(&self, t: f64) -> Option<(&Snapshot, &Snapshot, f32)> {
+        let first = self.states.front()?;
+        if t <= first.time {
+            return Some((first, first, 0.0));
+        }
+        for (a, b) in self.states.iter().zip(self.states.iter().skip(1)) {
+            if t <= b.time {
+                let span = (b.time - a.time).max(1e-12);
+                return Some((a, b, ((t - a.time) / span) as f32));
+            }
+        }
+        let last = self.states.back()?;
+        Some((last, last, 0.0))
+    }
+
+    /// Swim distance at time `t`, m.
+    pub fn swim_at(&self, t: f64) -> f32 {
+        self.bracket(t)
+            .map_or(0.0, |(a, b, f)| a.swim + f * (b.swim - a.swim))
+    }
+}
+
+/// One step's slice, relative to the bell's centroid so that the box following the bell
+/// never shows.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Snapshot {
     pub bell: Vec<Vec2>,
     pub tentacles: [Vec<Vec2>; 2],
     pub centroid: Vec2,
     pub swim: f32,
-    pub time: f32,
+    /// Slice time of the state, s.
+    pub time: f64,
 }
 
 impl Snapshot {
@@ -154,7 +209,7 @@ impl Snapshot {
             out.extend(chain.iter().map(|p| *p - c));
         }
         self.swim = sim.swim_distance();
-        self.time = sim.time();
+        self.time = sim.clock().time();
     }
 
     /// `self = a + t·(b − a)`, point by point; `b` alone where the shapes differ.
@@ -177,7 +232,7 @@ impl Snapshot {
         }
         self.centroid = Vec2::ZERO;
         self.swim = a.swim + t * (b.swim - a.swim);
-        self.time = a.time + t * (b.time - a.time);
+        self.time = a.time + t as f64 * (b.time - a.time);
     }
 
     pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {

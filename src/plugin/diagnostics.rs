@@ -1,4 +1,4 @@
-//! Simulation and meshing time per frame as Bevy diagnostics.
+//! Simulation and meshing time and mesh data per frame as Bevy diagnostics.
 
 use super::components::JellyfishSlice;
 use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
@@ -18,6 +18,8 @@ impl JellyfishDiagnostics {
     pub const MESHING: DiagnosticPath = DiagnosticPath::const_new("jellyfish/meshing_ms");
     /// Jellyfish with a running slice.
     pub const COUNT: DiagnosticPath = DiagnosticPath::const_new("jellyfish/count");
+    /// Bytes written into mesh assets this frame (what the renderer re-uploads), MB.
+    pub const MESH_DATA: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mesh_data_mb");
 }
 
 /// Time accumulated by the parallel systems during a frame (atomics, so any thread adds).
@@ -25,6 +27,7 @@ impl JellyfishDiagnostics {
 pub(crate) struct JellyfishTimings {
     simulation_ns: AtomicU64,
     meshing_ns: AtomicU64,
+    mesh_bytes: AtomicU64,
 }
 
 impl JellyfishTimings {
@@ -37,6 +40,10 @@ impl JellyfishTimings {
         self.meshing_ns
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
+
+    pub fn add_mesh_bytes(&self, bytes: usize) {
+        self.mesh_bytes.fetch_add(bytes as u64, Ordering::Relaxed);
+    }
 }
 
 pub(super) fn plugin(app: &mut App) {
@@ -44,6 +51,7 @@ pub(super) fn plugin(app: &mut App) {
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::SIMULATION).with_suffix(" ms"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESHING).with_suffix(" ms"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"))
         .add_systems(Last, record);
 }
 
@@ -56,6 +64,8 @@ fn record(
     let (simulation, meshing) = (ms(&timings.simulation_ns), ms(&timings.meshing_ns));
     diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || simulation);
     diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || meshing);
+    let bytes = timings.mesh_bytes.swap(0, Ordering::Relaxed);
+    diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || bytes as f64 * 1e-6);
     diagnostics.add_measurement(&JellyfishDiagnostics::COUNT, || {
         slices.iter().filter(|s| s.sim().is_some()).count() as f64
     });

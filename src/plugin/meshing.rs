@@ -21,22 +21,25 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// The CPU-heavy half, in parallel: blend the last two steps and build the surfaces.
+/// The CPU-heavy half, in parallel: blend the steps around the frame's time and build the
+/// surfaces.
 fn build_buffers(
     mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes)>,
     time: Res<Time<Fixed>>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
 ) {
-    let overstep = time.overstep_fraction();
+    let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
     jellyfish.par_iter_mut().for_each(|(slice, mut meshes)| {
         let Some(sim) = slice.sim() else {
             return;
         };
         let start = Instant::now();
         let meshes = &mut *meshes;
-        let t = slice.blend(overstep);
-        meshes.blended.blend(&slice.previous, &slice.current, t);
+        let Some((a, b, t)) = slice.history.bracket(slice.display_time(overstep, tick)) else {
+            return;
+        };
+        meshes.blended.blend(a, b, t);
         let species: Species = settings.meshed(&slice.species);
         let view = meshes.blended.view(sim.view().rest_bell);
         match shape::build_into(
@@ -44,7 +47,7 @@ fn build_buffers(
             &view,
             &species,
             slice.seed,
-            meshes.blended.time,
+            meshes.blended.time as f32,
         ) {
             Ok(()) => meshes.dirty = true,
             Err(e) => warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}"),
@@ -74,10 +77,11 @@ fn write_meshes(
         match &meshes.umbrella {
             Some(handle) => {
                 if let Some(mut mesh) = assets.get_mut(handle) {
-                    write(&mut mesh, umbrella, topology);
+                    timings.add_mesh_bytes(write(&mut mesh, umbrella, topology));
                 }
             }
             None if umbrella.vertex_count() > 0 => {
+                timings.add_mesh_bytes(bytes(umbrella));
                 let handle = assets.add(new_mesh(umbrella));
                 commands.entity(entity).insert(Mesh3d(handle.clone()));
                 meshes.umbrella = Some(handle);
@@ -89,7 +93,7 @@ fn write_meshes(
         match (&meshes.tentacles, meshes.tentacle_entity) {
             (Some(handle), Some(child)) => {
                 if visible && let Some(mut mesh) = assets.get_mut(handle) {
-                    write(&mut mesh, tentacles, topology);
+                    timings.add_mesh_bytes(write(&mut mesh, tentacles, topology));
                 }
                 let visibility = if visible {
                     Visibility::Inherited
@@ -101,6 +105,7 @@ fn write_meshes(
                 }
             }
             _ if visible => {
+                timings.add_mesh_bytes(bytes(tentacles));
                 let handle = assets.add(new_mesh(tentacles));
                 let child = commands
                     .spawn((
@@ -130,8 +135,9 @@ fn new_mesh(b: &mut SurfaceBuffers) -> Mesh {
 
 /// Hands the new positions and normals to the mesh by swapping buffers (the build
 /// overwrites every vertex each frame, so what comes back is as good as empty); the whole
-/// topology is copied only when it changed.
-fn write(mesh: &mut Mesh, b: &mut SurfaceBuffers, topology: bool) {
+/// topology is copied only when it changed. Returns the bytes written.
+fn write(mesh: &mut Mesh, b: &mut SurfaceBuffers, topology: bool) -> usize {
+    let written = bytes(b);
     let in_place = !topology
         && swap3(mesh, Mesh::ATTRIBUTE_POSITION, &mut b.positions)
         && swap3(mesh, Mesh::ATTRIBUTE_NORMAL, &mut b.normals);
@@ -141,6 +147,14 @@ fn write(mesh: &mut Mesh, b: &mut SurfaceBuffers, topology: bool) {
         mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, b.uvs.clone());
         mesh.insert_indices(Indices::U32(b.indices.clone()));
     }
+    written
+}
+
+/// Bytes a changed mesh costs the renderer: Bevy 0.19 re-extracts and re-uploads a
+/// modified mesh whole (positions, normals, texture coordinates, indices), however little
+/// of it changed.
+fn bytes(b: &SurfaceBuffers) -> usize {
+    b.vertex_count() * (2 * std::mem::size_of::<[f32; 3]>() + 8) + b.indices.len() * 4
 }
 
 fn swap3(

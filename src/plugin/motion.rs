@@ -1,5 +1,5 @@
 //! Swimming in the world: each jellyfish moves along its own +Y axis by its slice's swim
-//! distance, blended between the last two fixed steps.
+//! distance at the time the frame shows, blended between the fixed steps around it.
 
 use super::JellyfishSystems;
 use super::components::{JellyfishSlice, SwimMotion};
@@ -19,15 +19,14 @@ fn write_transforms(
     mut jellyfish: Query<(&JellyfishSlice, &mut SwimMotion, &mut Transform)>,
     time: Res<Time<Fixed>>,
 ) {
-    let overstep = time.overstep_fraction();
+    let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
     jellyfish
         .par_iter_mut()
         .for_each(|(slice, mut motion, mut transform)| {
             if slice.sim.is_none() {
                 return;
             }
-            let t = slice.blend(overstep);
-            let distance = slice.previous.swim + t * (slice.current.swim - slice.previous.swim);
+            let distance = slice.history.swim_at(slice.display_time(overstep, tick));
             let along = |tf: &Transform, d: f32| tf.rotation * (tf.scale * Vec3::Y * d);
             if motion.written != Some(*transform) {
                 motion.anchor = transform.translation - along(&transform, motion.distance);

@@ -1,9 +1,8 @@
-//! Slices for new jellyfish, and species or settings edits reaching living ones.
+//! Slices for new jellyfish, and species edits reaching living ones.
 
 use super::JellyfishSystems;
 use super::asset::SpeciesRejected;
 use super::components::{Jellyfish, JellyfishSlice};
-use super::settings::JellyfishSettings;
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::HashSet;
@@ -19,21 +18,19 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// Builds the slice of each jellyfish whose species has loaded, in parallel (a slice
-/// plans its fluid solver on creation). The phase offset starts the muscle clock
-/// mid-stroke; the seed staggers which fixed tick steps it, spreading the load.
+/// Builds the slice of each jellyfish whose species has loaded, in parallel. The phase
+/// offset starts the clock mid-stroke, which also decides which fixed ticks the slice
+/// steps on, spreading the load.
 fn create_slices(
     mut jellyfish: Query<(Entity, &Jellyfish, &mut JellyfishSlice)>,
     species: Res<Assets<Species>>,
-    settings: Res<JellyfishSettings>,
-    time: Res<Time<Fixed>>,
     mut edits: MessageReader<AssetEvent<Species>>,
     mut refused: Local<Refused>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
     let Refused { queue, failed } = &mut *refused;
     // A refused species is retried only after an edit, so the error is logged once.
-    if edits.read().count() > 0 || settings.is_changed() {
+    if edits.read().count() > 0 {
         failed.clear();
     }
     jellyfish
@@ -42,16 +39,14 @@ fn create_slices(
             if slice.sim.is_some() || failed.contains(&entity) {
                 return;
             }
-            let Some(base) = species.get(&jelly.species) else {
+            let Some(simulated) = species.get(&jelly.species) else {
                 return;
             };
-            let simulated = settings.simulated(base);
-            match SliceSim::new(&simulated) {
+            match SliceSim::new(simulated) {
                 Ok(mut sim) => {
                     let seed = jelly.seed_for(entity);
                     sim.set_time(jelly.phase_for(seed) * simulated.period());
-                    let ticks = settings.ticks_per_step(time.timestep(), &simulated);
-                    slice.start(sim, simulated, seed, ticks);
+                    slice.start(sim, simulated.clone(), seed);
                 }
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
             }
@@ -74,14 +69,13 @@ struct Refused {
     failed: HashSet<Entity>,
 }
 
-/// Applies edited species assets, a jellyfish's new species handle, and settings to living
-/// slices through [`SliceSim::set_species`], which refuses an invalid species before
-/// changing anything.
+/// Applies edited species assets and a jellyfish's new species handle to living slices
+/// through [`SliceSim::set_species`], which refuses an invalid species before changing
+/// anything.
 fn apply_edits(
     mut events: MessageReader<AssetEvent<Species>>,
     mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice)>,
     species: Res<Assets<Species>>,
-    settings: Res<JellyfishSettings>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
     let edited: HashSet<AssetId<Species>> = events
@@ -95,27 +89,30 @@ fn apply_edits(
     for (jelly, mut slice) in &mut jellyfish {
         let id = jelly.species.id();
         let swapped = jelly.is_changed() && !jelly.is_added();
-        if !edited.contains(&id) && !settings.is_changed() && !swapped {
+        if !edited.contains(&id) && !swapped {
             continue;
         }
-        let Some(base) = species.get(id) else {
+        let Some(simulated) = species.get(id) else {
             continue;
         };
-        let simulated = settings.simulated(base);
         let slice = &mut *slice;
         let Some(sim) = slice.sim.as_mut() else {
             continue;
         };
-        if simulated == slice.species {
+        if *simulated == slice.species {
             continue;
         }
-        match sim.set_species(&simulated) {
+        let clock = sim.clock().clone();
+        match sim.set_species(simulated) {
             Ok(()) => {
-                let topology = sim.view().bell.len() != slice.current.bell.len();
-                slice.species = simulated;
-                if topology {
-                    slice.current.capture(sim);
-                    slice.previous.clone_from(&slice.current);
+                let topology = slice
+                    .history
+                    .newest()
+                    .is_none_or(|s| s.bell.len() != sim.view().bell.len());
+                slice.species = simulated.clone();
+                // A new shape or a new step (the stored times are the old clock's).
+                if topology || *sim.clock() != clock {
+                    slice.history.restart(sim);
                 }
             }
             Err(error) => {

@@ -1,23 +1,51 @@
 //! Immersed-boundary coupling (paper section 3.2, after Peskin).
 //!
-//! Points read the fluid velocity by bilinear interpolation and give their forces back to
-//! the four nearest faces of each velocity component with the same weights, instead of
-//! Peskin's wide kernel: sharper on the coarse grids we use, and the two operations are
-//! exact adjoints, so spreading conserves the total force.
+//! Points read the fluid velocity through a kernel (see [`kernel`](super::kernel)) and give
+//! their forces back to the same faces with the same weights: the two operations are exact
+//! adjoints, so spreading conserves the total force. The points do not move between
+//! reading the water, spreading their forces and reading it again after the fluid step,
+//! so a step finds their stencils once.
 
-use super::fluid::Fluid;
+use super::fluid::{Component, Fluid};
+use super::kernel::Stencil;
 use glam::Vec2;
 
-/// Fluid velocity at each point.
-pub fn interpolate_velocity(fluid: &Fluid, points: &[Vec2], out: &mut [Vec2]) {
-    for (o, p) in out.iter_mut().zip(points) {
-        *o = fluid.velocity_at(*p);
-    }
+/// The stencils of a set of points on the grid, per velocity component.
+#[derive(Default)]
+pub struct Coupling {
+    u: Vec<Stencil>,
+    v: Vec<Stencil>,
 }
 
-/// Adds each point force (N per metre of depth) to the fluid's force density.
-pub fn spread_forces(fluid: &mut Fluid, points: &[Vec2], forces: &[Vec2]) {
-    for (p, f) in points.iter().zip(forces) {
-        fluid.spread_force(*p, *f);
+impl Coupling {
+    /// Finds the stencils of `points` on `fluid`'s grid.
+    pub fn locate(&mut self, fluid: &Fluid, points: &[Vec2]) {
+        self.u.clear();
+        self.v.clear();
+        self.u
+            .extend(points.iter().map(|p| fluid.stencil(Component::U, *p)));
+        self.v
+            .extend(points.iter().map(|p| fluid.stencil(Component::V, *p)));
+    }
+
+    /// Fluid velocity at each located point.
+    pub fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
+        let sample = |s: &Stencil, field: &[f32]| s.iter().map(|(i, w)| w * field[i]).sum();
+        for ((o, su), sv) in out.iter_mut().zip(&self.u).zip(&self.v) {
+            *o = Vec2::new(sample(su, &fluid.u), sample(sv, &fluid.v));
+        }
+    }
+
+    /// Adds each located point's force (N per metre of depth) to the fluid's force density.
+    pub fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
+        let inv_area = 1.0 / (fluid.h * fluid.h);
+        for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
+            for (i, w) in su.iter() {
+                fluid.force_u[i] += w * f.x * inv_area;
+            }
+            for (i, w) in sv.iter() {
+                fluid.force_v[i] += w * f.y * inv_area;
+            }
+        }
     }
 }

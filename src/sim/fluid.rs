@@ -1,10 +1,14 @@
-//! Incompressible 2D Navier–Stokes on a staggered (MAC) grid in a free-slip box.
+//! Incompressible 2D Navier–Stokes on a staggered (MAC) grid in a channel: free-slip side
+//! walls, still water streaming in at the top (ahead of the bell) and an open bottom (zero
+//! pressure) where the wake leaves, in the frame that follows the bell.
 //!
 //! `u` lives on vertical faces, `v` on horizontal faces, so the discrete divergence of a
 //! projected field vanishes to round-off. One step is Stam's recipe:
 //! [`advect`](Fluid::advect), add force, [`diffuse`](Fluid::diffuse),
-//! [`project`](Fluid::project).
+//! [`project`](Fluid::project). Velocities are relative to the frame; far from the bell
+//! the water streams past at [`Fluid::stream`].
 
+use super::kernel::{self, Stencil};
 use super::pressure::PoissonSolver;
 use glam::Vec2;
 
@@ -26,7 +30,18 @@ pub struct Fluid {
     /// Density, kg/m³.
     pub rho: f32,
     pub advection: Advection,
-    /// Absorbing layer along the walls: damping rate (1/s) per face, 0 in the interior.
+    /// How points read and spread onto the faces (see [`Kernel`]).
+    pub kernel: Kernel,
+    /// Hold the flow mirror-symmetric about [`Fluid::axis`] (averaged before each
+    /// projection, so what the projection leaves is divergence-free).
+    pub mirror: bool,
+    /// How many times wider than three cells the kernel is (at least 1): the bell's
+    /// `boundary_width` over the grid's three cells.
+    pub kernel_stretch: f32,
+    /// Vertical velocity of still water relative to the frame, m/s (minus the frame's
+    /// velocity): what enters at the top, and what the absorbing layer relaxes towards.
+    pub stream: f32,
+    /// Absorbing layer at the bottom (wake) end: damping rate (1/s) per face.
     sponge_u: Vec<f32>,
     sponge_v: Vec<f32>,
     scratch_u: Vec<f32>,
@@ -39,7 +54,7 @@ pub struct Fluid {
     poisson: PoissonSolver,
 }
 
-pub use crate::species::Advection;
+pub use crate::species::{Advection, Kernel};
 
 /// Which staggered component a sample refers to.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -61,6 +76,10 @@ impl Fluid {
             nu,
             rho,
             advection: Advection::default(),
+            kernel: Kernel::default(),
+            mirror: false,
+            kernel_stretch: 1.0,
+            stream: 0.0,
             sponge_u: vec![0.0; faces],
             sponge_v: vec![0.0; faces],
             scratch_u: vec![0.0; faces],
@@ -85,14 +104,17 @@ impl Fluid {
         self.apply_force(dt);
         self.diffuse(dt);
         self.absorb(dt);
+        if self.mirror {
+            self.symmetrise();
+        }
         self.project();
     }
 
-    /// Sets up an absorbing layer `width` cells wide along the walls whose damping rises
-    /// smoothly to `rate` (1/s) at the wall. It stands in for open water: a wake that
-    /// reaches the box would otherwise come back and push the jellyfish.
+    /// Sets up an absorbing layer `width` cells deep at the bottom (wake) end whose damping
+    /// rises smoothly to `rate` (1/s) at the boundary: vortices shed long ago fade into the
+    /// stream before they reach the open end, where a zero-pressure boundary would
+    /// reflect part of them.
     pub fn set_sponge(&mut self, width: usize, rate: f32) {
-        let n = self.n as f32;
         let w = width as f32;
         let ramp = |d: f32| {
             if w <= 0.0 || d >= w {
@@ -102,30 +124,38 @@ impl Fluid {
                 rate * s * s
             }
         };
-        // Distance (in cells) from a point in grid units to the nearest wall.
-        let wall = |x: f32, y: f32| x.min(n - x).min(y).min(n - y);
         let n = self.n;
         for j in 0..n {
-            for i in 0..=n {
-                self.sponge_u[j * (n + 1) + i] = ramp(wall(i as f32, j as f32 + 0.5));
-            }
+            let r = ramp(j as f32 + 0.5);
+            self.sponge_u[j * (n + 1)..][..n + 1].fill(r);
         }
         for j in 0..=n {
-            for i in 0..n {
-                self.sponge_v[j * n + i] = ramp(wall(i as f32 + 0.5, j as f32));
-            }
+            let r = ramp(j as f32);
+            self.sponge_v[j * n..][..n].fill(r);
         }
     }
 
-    /// Damps the velocity in the absorbing layer.
+    /// Relaxes the velocity in the absorbing layer towards the stream.
     pub fn absorb(&mut self, dt: f32) {
         // Implicit Euler: stable for any rate and step.
         for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
             *u /= 1.0 + s * dt;
         }
+        let stream = self.stream;
         for (v, s) in self.v.iter_mut().zip(&self.sponge_v) {
-            *v /= 1.0 + s * dt;
+            *v = stream + (*v - stream) / (1.0 + s * dt);
         }
+    }
+
+    /// The frame speeds up by `dv` (m/s, along y): every relative velocity drops by it, the
+    /// world's water is untouched (a Galilean change of frame; uniform, so still
+    /// divergence-free).
+    pub fn change_frame(&mut self, dv: f32) {
+        if dv == 0.0 {
+            return;
+        }
+        self.v.iter_mut().for_each(|v| *v -= dv);
+        self.stream -= dv;
     }
 
     /// Self-advection, by Stam's semi-Lagrangian step or by MacCormack's method (Selle et
@@ -137,14 +167,19 @@ impl Fluid {
     pub fn advect(&mut self, dt: f32) {
         let n = self.n;
         let s = dt / self.h;
-        if self.advection == Advection::SemiLagrangian {
+        if self.advection != Advection::MacCormack {
+            let cubic = self.advection == Advection::Cubic;
             semi_lagrangian(
                 [&self.u, &self.v],
                 [&self.u, &self.v],
                 n,
                 s,
                 [&mut self.scratch_u, &mut self.scratch_v],
-                None,
+                if cubic {
+                    Sample::Cubic
+                } else {
+                    Sample::Linear(None)
+                },
             );
             std::mem::swap(&mut self.u, &mut self.scratch_u);
             std::mem::swap(&mut self.v, &mut self.scratch_v);
@@ -158,7 +193,7 @@ impl Fluid {
             n,
             s,
             [&mut self.scratch_u, &mut self.scratch_v],
-            Some([&mut self.bounds_u, &mut self.bounds_v]),
+            Sample::Linear(Some([&mut self.bounds_u, &mut self.bounds_v])),
         );
         // Back: back = A⁻¹(A(u)), with the same velocity and the step reversed.
         semi_lagrangian(
@@ -167,7 +202,7 @@ impl Fluid {
             n,
             -s,
             [&mut self.back_u, &mut self.back_v],
-            None,
+            Sample::Linear(None),
         );
         for (out, fwd, orig, bounds) in [
             (&mut self.back_u, &self.scratch_u, &self.u, &self.bounds_u),
@@ -244,6 +279,11 @@ impl Fluid {
                 *v -= (p1 - p0) / h;
             }
         }
+        // The open wake end: φ = 0 on the boundary face, so the ghost cell beyond is −φ.
+        // The inflow face at the top keeps the stream (∂φ/∂y = 0 there).
+        for (v, p) in self.v[..n].iter_mut().zip(&self.phi[..n]) {
+            *v -= 2.0 * p / h;
+        }
     }
 
     /// Discrete divergence of cell `(i, j)`, 1/s.
@@ -281,7 +321,23 @@ impl Fluid {
         if nan { f32::NAN } else { max2.sqrt() }
     }
 
-    /// Velocity at a point, bilinear per component.
+    /// A bound on the speed, m/s: `√(max|u|² + max|v|²)` over the faces, never below
+    /// [`Fluid::speed_max`]; two plain reductions (no averaging, no square roots per
+    /// cell), cheap enough for the step's Courant check. NaN if any velocity is NaN.
+    pub fn speed_bound(&self) -> f32 {
+        let largest = |field: &[f32]| {
+            let (mut max, mut nan) = (0.0f32, false);
+            for x in field {
+                max = max.max(x.abs());
+                nan |= x.is_nan();
+            }
+            if nan { f32::NAN } else { max }
+        };
+        let (u, v) = (largest(&self.u), largest(&self.v));
+        (u * u + v * v).sqrt()
+    }
+
+    /// Velocity at a point, per component under the fluid's kernel.
     pub fn velocity_at(&self, p: Vec2) -> Vec2 {
         Vec2::new(
             self.sample_component(Component::U, p),
@@ -289,95 +345,98 @@ impl Fluid {
         )
     }
 
-    /// Bilinear sample of one component. Outside the box, the nearest value (free slip).
+    /// Sample of one component under the fluid's kernel. Outside the box, the nearest
+    /// faces' values.
     pub fn sample_component(&self, c: Component, p: Vec2) -> f32 {
         let field = match c {
             Component::U => &self.u,
             Component::V => &self.v,
         };
-        let mut value = 0.0;
-        for (index, w) in self.stencil(c, p) {
-            value += w * field[index];
-        }
-        value
+        self.stencil(c, p).iter().map(|(i, w)| w * field[i]).sum()
     }
 
-    /// The four faces of component `c` around `p` and their bilinear weights (sum 1).
-    /// Interpolation and force spreading both use this, which makes them adjoint.
-    pub fn stencil(&self, c: Component, p: Vec2) -> [(usize, f32); 4] {
+    /// The faces of component `c` around `p` and their weights under the fluid's
+    /// [`Kernel`] (summing to 1). Interpolation and force spreading both use this, which
+    /// makes them adjoint.
+    pub fn stencil(&self, c: Component, p: Vec2) -> Stencil {
         let n = self.n;
         let (gx, gy, nx, ny) = match c {
             Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
             Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
         };
-        let gx = if gx.is_finite() { gx } else { 0.0 };
-        let gy = if gy.is_finite() { gy } else { 0.0 };
-        let (i0, j0, fx, fy) = locate(nx, ny, gx, gy);
-        let at = |i: usize, j: usize| j * nx + i;
-        [
-            (at(i0, j0), (1.0 - fx) * (1.0 - fy)),
-            (at(i0 + 1, j0), fx * (1.0 - fy)),
-            (at(i0, j0 + 1), (1.0 - fx) * fy),
-            (at(i0 + 1, j0 + 1), fx * fy),
-        ]
+        kernel::stencil(self.kernel, gx, gy, nx, ny, self.kernel_stretch)
     }
 
     /// Spreads a point force (N per metre of depth) onto the force density of the faces
-    /// around `p` with the bilinear weights: the total over the grid times `h²` is `force`.
+    /// around `p` with the stencil's weights: the total over the grid times `h²` is `force`.
     pub fn spread_force(&mut self, p: Vec2, force: Vec2) {
         let inv_area = 1.0 / (self.h * self.h);
-        for (index, w) in self.stencil(Component::U, p) {
+        for (index, w) in self.stencil(Component::U, p).iter() {
             self.force_u[index] += w * force.x * inv_area;
         }
-        for (index, w) in self.stencil(Component::V, p) {
+        for (index, w) in self.stencil(Component::V, p).iter() {
             self.force_v[index] += w * force.y * inv_area;
         }
     }
 
-    /// Shifts every field by whole cells (`dx`, `dy` each in -1..=1) so that the content
-    /// moves by `-(dx, dy)·h`; quiet water flows in at the opened side.
-    pub fn shift(&mut self, dx: i32, dy: i32) {
+    /// Shifts every field across the channel by `dx` whole cells (-1..=1) so that the
+    /// content moves by `-dx·h`; still water (the stream) flows in at the opened side.
+    pub fn shift_across(&mut self, dx: i32) {
         let n = self.n;
-        shift_field(&mut self.u, &mut self.scratch_u, n + 1, n, dx, dy);
-        shift_field(&mut self.v, &mut self.scratch_v, n, n + 1, dx, dy);
+        shift_field(&mut self.u, &mut self.scratch_u, n + 1, n, dx, 0.0);
+        shift_field(&mut self.v, &mut self.scratch_v, n, n + 1, dx, self.stream);
         self.enforce_walls();
         self.project();
     }
 
-    /// Averages the flow with its mirror image about the vertical centre line.
+    /// The vertical line the slice is mirror-symmetric about, m: the centre of the middle
+    /// column of cells. Always a cell centre, for an odd or an even grid: with the axis on
+    /// a face line (the box's centre on even grids) the aperture's jet met the grid
+    /// differently and the stroke changed by 5% between neighbouring grids.
+    pub fn axis(&self) -> f32 {
+        (cell(self.n / 2) + 0.5) * self.h
+    }
+
+    /// Averages the flow with its mirror image about [`Fluid::axis`]. On even grids the
+    /// axis is half a cell off the box's centre: the faces whose mirror is outside the box
+    /// or on a wall are left as they are.
     pub fn symmetrise(&mut self) {
         let n = self.n;
+        let c = n / 2;
         for j in 0..n {
             let row = &mut self.u[j * (n + 1)..(j + 1) * (n + 1)];
-            for i in 0..=n / 2 {
-                let m = n - i;
-                let avg = 0.5 * (row[i] - row[m]);
-                row[i] = avg;
-                row[m] = -avg;
+            for i in 1..=c {
+                let m = 2 * c + 1 - i;
+                if m < n {
+                    let avg = 0.5 * (row[i] - row[m]);
+                    row[i] = avg;
+                    row[m] = -avg;
+                }
             }
         }
         for j in 0..=n {
             let row = &mut self.v[j * n..(j + 1) * n];
-            for i in 0..n / 2 {
-                let m = n - 1 - i;
-                let avg = 0.5 * (row[i] + row[m]);
-                row[i] = avg;
-                row[m] = avg;
+            for i in 0..c {
+                let m = 2 * c - i;
+                if m < n {
+                    let avg = 0.5 * (row[i] + row[m]);
+                    row[i] = avg;
+                    row[m] = avg;
+                }
             }
         }
     }
 
-    /// Zero normal velocity on the walls.
+    /// Zero normal velocity on the side walls; still water (the stream) entering at the
+    /// top. The bottom, where the wake leaves, is open.
     fn enforce_walls(&mut self) {
         let n = self.n;
         for j in 0..n {
             self.u[j * (n + 1)] = 0.0;
             self.u[j * (n + 1) + n] = 0.0;
         }
-        for i in 0..n {
-            self.v[i] = 0.0;
-            self.v[n * n + i] = 0.0;
-        }
+        let stream = self.stream;
+        self.v[n * n..].fill(stream);
     }
 
     /// Total kinetic energy per unit depth, J/m.
@@ -391,24 +450,40 @@ impl Fluid {
         self.u.iter().chain(&self.v).all(|x| x.is_finite())
     }
 
-    /// Sets all velocities and pending forces to zero.
+    /// Still water: every velocity the stream's, no pending forces.
     pub fn clear(&mut self) {
-        for f in [
-            &mut self.u,
-            &mut self.v,
-            &mut self.force_u,
-            &mut self.force_v,
-        ] {
-            f.iter_mut().for_each(|x| *x = 0.0);
+        for f in [&mut self.u, &mut self.force_u, &mut self.force_v] {
+            f.fill(0.0);
         }
+        self.v.fill(self.stream);
     }
 }
 
 /// One semi-Lagrangian step of the staggered pair `src` through the velocity `vel`, by
-/// `s = dt/h` cells per unit velocity (negative: backwards). Wall faces are left as they
-/// are: the caller zeroes them.
-/// With `bounds`, also records each result's interpolation corners' min and max.
+/// `s = dt/h` cells per unit velocity (negative: backwards). Side-wall faces are left as
+/// they are: the caller zeroes them. A trace that leaves through an open end reads the
+/// boundary face, where the stream enters.
 fn semi_lagrangian(
+    src: [&[f32]; 2],
+    vel: [&[f32]; 2],
+    n: usize,
+    s: f32,
+    out: [&mut Vec<f32>; 2],
+    sample: Sample,
+) {
+    // One loop per sampler, so each inner loop is compiled without the others' branches.
+    match sample {
+        Sample::Linear(None) => sweep::<LINEAR>(src, vel, n, s, out, None),
+        Sample::Linear(bounds) => sweep::<BOUNDED>(src, vel, n, s, out, bounds),
+        Sample::Cubic => sweep::<CUBIC>(src, vel, n, s, out, None),
+    }
+}
+
+const LINEAR: u8 = 0;
+const BOUNDED: u8 = 1;
+const CUBIC: u8 = 2;
+
+fn sweep<const MODE: u8>(
     src: [&[f32]; 2],
     vel: [&[f32]; 2],
     n: usize,
@@ -430,40 +505,102 @@ fn semi_lagrangian(
         for i in 1..n {
             let cu = s * u_row[i];
             let cv = s * 0.25 * (v0[i - 1] + v0[i] + v1[i - 1] + v1[i]);
-            let (x, y) = (i as f32 - cu, j as f32 - cv);
-            trace(
-                src[0],
-                n + 1,
-                n,
-                x,
-                y,
-                row + i,
-                out_u,
-                bounds_u.as_deref_mut(),
-            );
+            let (x, y) = (cell(i) - cu, cell(j) - cv);
+            match MODE {
+                CUBIC => out_u[row + i] = cubic_sample(src[0], n + 1, n, x, y),
+                LINEAR => out_u[row + i] = linear_sample(src[0], n + 1, n, x, y),
+                _ => trace(
+                    src[0],
+                    n + 1,
+                    n,
+                    x,
+                    y,
+                    row + i,
+                    out_u,
+                    bounds_u.as_deref_mut(),
+                ),
+            }
         }
     }
-    // v faces, n × (n + 1): each one's own v, and u averaged likewise.
-    for j in 1..n {
+    // v faces, n × (n + 1), the open ends included: each one's own v, and u averaged
+    // likewise (from the one row there is at the ends).
+    for j in 0..=n {
         let row = j * n;
         let v_row = &v[row..][..n];
-        let (u0, u1) = (&u[(j - 1) * (n + 1)..][..n + 1], &u[j * (n + 1)..][..n + 1]);
+        let (below, above) = (j.saturating_sub(1), j.min(n - 1));
+        let (u0, u1) = (
+            &u[below * (n + 1)..][..n + 1],
+            &u[above * (n + 1)..][..n + 1],
+        );
         for i in 0..n {
             let cv = s * v_row[i];
             let cu = s * 0.25 * (u0[i] + u0[i + 1] + u1[i] + u1[i + 1]);
-            let (x, y) = (i as f32 - cu, j as f32 - cv);
-            trace(
-                src[1],
-                n,
-                n + 1,
-                x,
-                y,
-                row + i,
-                out_v,
-                bounds_v.as_deref_mut(),
-            );
+            let (x, y) = (cell(i) - cu, cell(j) - cv);
+            match MODE {
+                CUBIC => out_v[row + i] = cubic_sample(src[1], n, n + 1, x, y),
+                LINEAR => out_v[row + i] = linear_sample(src[1], n, n + 1, x, y),
+                _ => trace(
+                    src[1],
+                    n,
+                    n + 1,
+                    x,
+                    y,
+                    row + i,
+                    out_v,
+                    bounds_v.as_deref_mut(),
+                ),
+            }
         }
     }
+}
+
+/// Bilinear sample of `field` (`nx × ny`) at `(x, y)`.
+#[inline(always)]
+fn linear_sample(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> f32 {
+    let [a0, a1, b0, b1, fx, fy] = corners(field, nx, ny, x, y);
+    let a = a0 + fx * (a1 - a0);
+    let b = b0 + fx * (b1 - b0);
+    a + fy * (b - a)
+}
+
+/// How a semi-Lagrangian step samples the field at the foot of a trace.
+enum Sample<'a> {
+    /// Bilinear; with `Some`, also record each sample's corner range (for MacCormack).
+    Linear(Option<[&'a mut Vec<(f32, f32)>; 2]>),
+    /// Catmull–Rom bicubic, limited to the four nearest values.
+    Cubic,
+}
+
+/// Catmull–Rom bicubic sample of `field` (`nx × ny`) at `(x, y)`, limited to the range of
+/// the four nearest values so that it adds no new extrema (Fedkiw et al. 2001). Its error
+/// is fourth order where bilinear's is second: the numerical viscosity that smears a bell
+/// ten cells wide falls by an order of magnitude.
+#[inline]
+fn cubic_sample(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) -> f32 {
+    let (i, j, fx, fy) = locate(nx, ny, x, y);
+    let weights = |t: f32| {
+        let (t2, t3) = (t * t, t * t * t);
+        [
+            0.5 * (-t3 + 2.0 * t2 - t),
+            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+            0.5 * (t3 - t2),
+        ]
+    };
+    let (wx, wy) = (weights(fx), weights(fy));
+    let col = |d: usize| (i + d).saturating_sub(1).min(nx - 1);
+    let cols = [col(0), col(1), col(2), col(3)];
+    let mut value = 0.0;
+    for (b, w) in wy.iter().enumerate() {
+        let r = &field[(j + b).saturating_sub(1).min(ny - 1) * nx..][..nx];
+        value +=
+            w * (wx[0] * r[cols[0]] + wx[1] * r[cols[1]] + wx[2] * r[cols[2]] + wx[3] * r[cols[3]]);
+    }
+    let [a0, a1, b0, b1, _, _] = corners(field, nx, ny, x, y);
+    let lo = a0.min(a1).min(b0).min(b1);
+    let hi = a0.max(a1).max(b0).max(b1);
+    // max-then-min, not clamp: NaN must reach the health check, not panic.
+    value.max(lo).min(hi)
 }
 
 /// A grid index as a coordinate (through u32: one instruction, where usize takes a branch).
@@ -545,24 +682,22 @@ fn laplacian_step(src: &[f32], dst: &mut [f32], nx: usize, ny: usize, a: f32) {
     }
 }
 
-/// `dst(i, j) = src(i + dx, j + dy)`, zero where that falls outside.
+/// `dst(i, j) = src(i + dx, j)`, `fill` where that falls outside.
 fn shift_field(
     field: &mut Vec<f32>,
     scratch: &mut Vec<f32>,
     nx: usize,
     ny: usize,
     dx: i32,
-    dy: i32,
+    fill: f32,
 ) {
     for j in 0..ny {
         for i in 0..nx {
             let si = i as i32 + dx;
-            let sj = j as i32 + dy;
-            scratch[j * nx + i] = if si >= 0 && sj >= 0 && (si as usize) < nx && (sj as usize) < ny
-            {
-                field[sj as usize * nx + si as usize]
+            scratch[j * nx + i] = if si >= 0 && (si as usize) < nx {
+                field[j * nx + si as usize]
             } else {
-                0.0
+                fill
             };
         }
     }

@@ -2,8 +2,10 @@
 
 mod banded;
 pub mod body;
+pub mod clock;
 pub mod coupling;
 pub mod fluid;
+pub mod kernel;
 pub mod muscle;
 pub mod pressure;
 mod slice;

@@ -1,0 +1,440 @@
+//! The numerics tables of `docs/numerics.md`: how far a slice swims per cycle at different
+//! frame rates, grids (each puts the bell at another offset to the cells) and resolutions,
+//! for every shipped species.
+//!
+//! *Swim per cycle* is the mean distance per cycle in bell diameters over cycles 10–30;
+//! *spread* of a set of runs is (max − min) / mean; *cv* is the cycle-to-cycle coefficient
+//! of variation over the same cycles.
+//!
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|all] [--from 10] [--to 30]`
+
+use bevy_jellyfish::{SliceSim, Species};
+use std::sync::Mutex;
+use std::time::Instant;
+
+struct Run {
+    /// Distance per cycle, diameters, for cycles `from..to`.
+    per_cycle: Vec<f32>,
+    /// CPU seconds per simulated second.
+    cost: f64,
+    recoveries: u32,
+}
+
+impl Run {
+    fn mean(&self) -> f32 {
+        self.per_cycle.iter().sum::<f32>() / self.per_cycle.len().max(1) as f32
+    }
+    fn cv(&self) -> f32 {
+        let m = self.mean();
+        let var = self.per_cycle.iter().map(|x| (x - m).powi(2)).sum::<f32>()
+            / self.per_cycle.len().max(1) as f32;
+        var.sqrt() / m.abs()
+    }
+}
+
+/// Swims `species` with `advance(frame)` calls and records the distance at each cycle
+/// boundary (interpolated between the frames around it).
+fn swim(species: &Species, frame: f32, from: u32, to: u32) -> Run {
+    let mut sim = SliceSim::new(species).expect("valid species");
+    let period = species.period() as f64;
+    let start_time = sim.time() as f64;
+    let mut boundaries = Vec::with_capacity(to as usize + 1);
+    let (mut t0, mut d0) = (start_time, sim.swim_distance() as f64);
+    let clock = Instant::now();
+    let mut frames = 0u64;
+    while boundaries.len() <= to as usize {
+        frames += 1;
+        sim.advance(frame);
+        let (t1, d1) = (
+            start_time + frames as f64 * frame as f64,
+            sim.swim_distance() as f64,
+        );
+        let next = start_time + boundaries.len() as f64 * period;
+        if t1 >= next {
+            let f = if t1 > t0 {
+                (next - t0) / (t1 - t0)
+            } else {
+                1.0
+            };
+            boundaries.push(d0 + f.clamp(0.0, 1.0) * (d1 - d0));
+        }
+        (t0, d0) = (t1, d1);
+    }
+    let cost = clock.elapsed().as_secs_f64() / (frames as f64 * frame as f64);
+    let d = species.diameter as f64;
+    Run {
+        per_cycle: (from as usize..to as usize)
+            .map(|c| ((boundaries[c + 1] - boundaries[c]) / d) as f32)
+            .collect(),
+        cost,
+        recoveries: sim.recoveries(),
+    }
+}
+
+/// Applies `--set field=value` overrides (RON values) to a species.
+fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
+    if overrides.is_empty() {
+        return species;
+    }
+    let text = species.to_ron().expect("a species writes as RON");
+    let lines: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let key = line.trim_start().split(':').next().unwrap_or("");
+            match overrides.iter().find(|(k, _)| k == key) {
+                Some((k, v)) => format!("    {k}: {v},"),
+                None => line.to_string(),
+            }
+        })
+        .collect();
+    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
+}
+
+fn shipped() -> Vec<Species> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("assets/species")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.to_string_lossy().ends_with(".ron"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(f).expect("readable species file");
+            Species::from_ron(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()))
+        })
+        .collect()
+}
+
+/// Runs the jobs on every core, keeping their order.
+fn parallel<T: Send + Sync, R: Send>(jobs: Vec<T>, f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let results: Mutex<Vec<Option<R>>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
+    let next = Mutex::new(0usize);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| {
+                loop {
+                    let i = {
+                        let mut n = next.lock().unwrap();
+                        *n += 1;
+                        *n - 1
+                    };
+                    let Some(job) = jobs.get(i) else { break };
+                    let r = f(job);
+                    results.lock().unwrap()[i] = Some(r);
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .unwrap()
+        .into_iter()
+        .map(|r| r.unwrap())
+        .collect()
+}
+
+fn spread(values: &[f32]) -> f32 {
+    let max = values.iter().copied().fold(f32::MIN, f32::max);
+    let min = values.iter().copied().fold(f32::MAX, f32::min);
+    let mean = values.iter().sum::<f32>() / values.len() as f32;
+    (max - min) / mean.abs()
+}
+
+fn row(label: &str, runs: &[Run]) {
+    let cells: Vec<String> = runs
+        .iter()
+        .map(|r| {
+            let flag = if r.recoveries > 0 {
+                format!(" ({}r)", r.recoveries)
+            } else {
+                String::new()
+            };
+            format!("{:.3} ± {:.0}%{flag}", r.mean(), 100.0 * r.cv())
+        })
+        .collect();
+    let means: Vec<f32> = runs.iter().map(Run::mean).collect();
+    println!(
+        "| {label} | {} | {:.1}% |",
+        cells.join(" | "),
+        100.0 * spread(&means)
+    );
+}
+
+fn frames(species: &[Species], from: u32, to: u32) {
+    const RATES: [f32; 4] = [20.0, 30.0, 60.0, 144.0];
+    println!(
+        "\n### Frame rate: swim per cycle (cycles {from}–{to}) ± cycle-to-cycle cv, spread over rates\n"
+    );
+    println!("| species (grid) | 20 Hz | 30 Hz | 60 Hz | 144 Hz | spread |");
+    println!("|---|---|---|---|---|---|");
+    for s in species {
+        let runs = parallel(RATES.to_vec(), |hz| swim(s, 1.0 / hz, from, to));
+        row(&format!("{} ({})", s.name, s.grid_resolution), &runs);
+    }
+}
+
+fn grids(species: &[Species], from: u32, to: u32) {
+    println!("\n### Grid offset: swim per cycle at grids G..G+3 (60 Hz frames), spread\n");
+    println!("| species | G | G+1 | G+2 | G+3 | spread |");
+    println!("|---|---|---|---|---|---|");
+    for s in species {
+        let g = s.grid_resolution;
+        let jobs: Vec<Species> = (0..4)
+            .map(|k| Species {
+                grid_resolution: g + k,
+                ..s.clone()
+            })
+            .collect();
+        let runs = parallel(jobs, |s| swim(s, 1.0 / 60.0, from, to));
+        row(&format!("{} (G = {g})", s.name), &runs);
+    }
+}
+
+fn convergence(species: &[Species], from: u32, to: u32) {
+    println!(
+        "\n### Convergence: swim per cycle against grid (60 Hz frames), cost in ms per simulated s\n"
+    );
+    for s in species {
+        let g = s.grid_resolution as f32;
+        let grids: Vec<u32> = [0.5, 0.75, 1.0, 1.5, 2.0]
+            .iter()
+            .map(|f| (f * g).round() as u32)
+            .collect();
+        let jobs: Vec<Species> = grids
+            .iter()
+            .map(|&grid| Species {
+                grid_resolution: grid,
+                ..s.clone()
+            })
+            .collect();
+        let runs = parallel(jobs, |s| swim(s, 1.0 / 60.0, from, to));
+        println!(
+            "| {} grid | swim per cycle | cv | ms per simulated s |",
+            s.name
+        );
+        println!("|---|---|---|---|");
+        for (grid, r) in grids.iter().zip(&runs) {
+            println!(
+                "| {grid} | {:.3} | {:.0}% | {:.1} |",
+                r.mean(),
+                100.0 * r.cv(),
+                1e3 * r.cost
+            );
+        }
+        let at = |f: f32| {
+            runs[grids
+                .iter()
+                .position(|&x| x == (f * g).round() as u32)
+                .unwrap()]
+            .mean()
+        };
+        println!(
+            "\nG against 1.5·G: {:+.1}%\n",
+            100.0 * (at(1.5) / at(1.0) - 1.0)
+        );
+    }
+}
+
+/// Whole bells: crumpled samples (every 3rd 60 Hz frame), the smallest area, the drift of
+/// the area at phase 0 from its value at cycle 5, and recoveries.
+fn crumples(species: &[Species], cycles: u32) {
+    println!("\n### Whole bells over {cycles} cycles (60 Hz frames, every 3rd sampled)\n");
+    println!(
+        "| species (grid) | crumpled samples | smallest area/rest | phase-0 area drift | recoveries | swim per cycle (cv), cycles 20–40 |"
+    );
+    println!("|---|---|---|---|---|---|");
+    let rows = parallel(species.to_vec(), |s| {
+        let mut sim = SliceSim::new(s).expect("valid species");
+        let (mut samples, mut crumpled, mut smallest) = (0u64, 0u64, f32::MAX);
+        let (mut reference, mut drift) = (None, 0.0f32);
+        let mut per_cycle = Vec::new();
+        let mut last = (0u64, 0.0f32);
+        let mut frame = 0u64;
+        while sim.cycle() < cycles as u64 {
+            sim.advance(1.0 / 60.0);
+            frame += 1;
+            if frame.is_multiple_of(3) {
+                let o = sim.outline();
+                samples += 1;
+                crumpled += o.crumpled() as u64;
+                smallest = smallest.min(o.area_ratio);
+            }
+            if sim.cycle() != last.0 {
+                let a = sim.outline().area_ratio;
+                if sim.cycle() == 5 {
+                    reference = Some(a);
+                }
+                if let Some(r) = reference {
+                    drift = drift.max((a / r - 1.0).abs());
+                }
+                if (21..=40).contains(&sim.cycle()) {
+                    per_cycle.push((sim.swim_distance() - last.1) / s.diameter);
+                }
+                last = (sim.cycle(), sim.swim_distance());
+            }
+        }
+        let run = Run {
+            per_cycle,
+            cost: 0.0,
+            recoveries: sim.recoveries(),
+        };
+        format!(
+            "| {} ({}) | {crumpled} of {samples} | {smallest:.2} | {:.1}% | {} | {:.3} ({:.0}%) |",
+            s.name,
+            s.grid_resolution,
+            100.0 * drift,
+            sim.recoveries(),
+            run.mean(),
+            100.0 * run.cv()
+        )
+    });
+    rows.iter().for_each(|r| println!("{r}"));
+}
+
+/// Distance in `seconds` of swimming, diameters (the paper's Fig. 5 measure).
+fn distance_in(species: &Species, seconds: f32) -> f32 {
+    let mut sim = SliceSim::new(species).expect("valid species");
+    while sim.time() < seconds {
+        sim.advance(0.1);
+    }
+    sim.swim_distance() / species.diameter
+}
+
+fn calibration(base: &Species) {
+    let from_to = |s: &Species| swim(s, 1.0 / 60.0, 20, 40);
+    let staggered = from_to(base);
+    let unison = from_to(&Species {
+        expansion_stagger: 0.0,
+        ..base.clone()
+    });
+    println!("\n### Calibration ({})\n", base.name);
+    println!(
+        "- swim per cycle, cycles 20–40: staggered {:.3} (cv {:.1}%), unison {:.3} (cv {:.1}%): staggered {:+.0}%",
+        staggered.mean(),
+        100.0 * staggered.cv(),
+        unison.mean(),
+        100.0 * unison.cv(),
+        100.0 * (staggered.mean() / unison.mean() - 1.0)
+    );
+    let re =
+        |s: &Species| s.density * s.contraction_frequency * s.diameter * s.diameter / s.viscosity;
+    for target in [1.0f32, 10.0, 100.0] {
+        let viscosity =
+            base.density * base.contraction_frequency * base.diameter * base.diameter / target;
+        let s = Species {
+            viscosity,
+            ..base.clone()
+        };
+        let r = swim(&s, 1.0 / 60.0, 10, 20);
+        println!(
+            "- Re {:.0} (viscosity {viscosity:.3e} Pa·s): {:.3} D per cycle",
+            re(&s),
+            r.mean()
+        );
+    }
+    println!(
+        "- Re {:.0} (sea water): {:.3} D per cycle",
+        re(base),
+        staggered.mean()
+    );
+    let frequencies: Vec<f32> = (2..=16).map(|k| k as f32 / 10.0).collect();
+    for (label, modulus) in [
+        ("E = 1186 Pa", base.elastic_modulus),
+        ("E × 2", 2.0 * base.elastic_modulus),
+        ("E / 2", 0.5 * base.elastic_modulus),
+    ] {
+        let jobs: Vec<Species> = frequencies
+            .iter()
+            .map(|&f| Species {
+                contraction_frequency: f,
+                elastic_modulus: modulus,
+                ..base.clone()
+            })
+            .collect();
+        let d = parallel(jobs, |s| distance_in(s, 20.0));
+        let (peak, best) = d
+            .iter()
+            .enumerate()
+            .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
+        let cells: Vec<String> = frequencies
+            .iter()
+            .zip(&d)
+            .map(|(f, x)| format!("{f:.1}:{x:.2}"))
+            .collect();
+        println!(
+            "- sweep {label}: peak {:.1} Hz ({best:.2} D in 20 s; ends {:.2} and {:.2}: {:+.0}% / {:+.0}%)\n  {}",
+            frequencies[peak],
+            d[0],
+            d[d.len() - 1],
+            100.0 * (best / d[0] - 1.0),
+            100.0 * (best / d[d.len() - 1] - 1.0),
+            cells.join(" ")
+        );
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let flag = |name: &str, default: u32| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let (from, to) = (flag("--from", 10), flag("--to", 30));
+    let which = args.first().map(String::as_str).unwrap_or("all");
+    let overrides: Vec<(String, String)> = args
+        .windows(2)
+        .filter(|w| w[0] == "--set")
+        .filter_map(|w| {
+            w[1].split_once('=')
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+        })
+        .collect();
+    let only: Option<&String> = args
+        .iter()
+        .position(|a| a == "--species")
+        .and_then(|i| args.get(i + 1));
+    let species: Vec<Species> = shipped()
+        .into_iter()
+        .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
+        .map(|s| with_overrides(s, &overrides))
+        .collect();
+    let default = vec![with_overrides(Species::aurelia(), &overrides)];
+    if matches!(which, "frames" | "all") {
+        frames(&species, from, to);
+    }
+    if matches!(which, "grids" | "all") {
+        grids(&species, from, to);
+    }
+    if matches!(which, "series") {
+        let to = flag("--to", 60);
+        for s in &species {
+            let r = swim(s, 1.0 / 60.0, 0, to);
+            let groups: Vec<String> = r
+                .per_cycle
+                .chunks(5)
+                .map(|c| format!("{:.3}", c.iter().sum::<f32>() / c.len() as f32))
+                .collect();
+            println!(
+                "{} ({}): per-cycle means by 5s: {}",
+                s.name,
+                s.grid_resolution,
+                groups.join(" ")
+            );
+        }
+    }
+    if matches!(which, "calibration") {
+        calibration(&default[0]);
+    }
+    if matches!(which, "crumples") {
+        crumples(&species, flag("--cycles", 300));
+    }
+    if matches!(which, "convergence" | "all") {
+        convergence(&default, from, to);
+    }
+}

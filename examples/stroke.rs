@@ -1,0 +1,131 @@
+//! The paper's Fig. 11: the morphology of each shipped species through one contraction
+//! cycle — the subumbrella (with its tentacles) at eight phases, drawn where the bell is
+//! in the world, so the picture shows both the shape and the forward movement.
+//!
+//! Writes `stroke.png` into `--out` (default `docs/`).
+//!
+//! `cargo run --release --no-default-features --example stroke -- [--cycle 20] [--out docs] [--set field=value …]`
+
+#[path = "sweep/plot.rs"]
+mod plot;
+
+use bevy_jellyfish::{SliceSim, Species};
+use plot::{Chart, Series};
+use std::path::PathBuf;
+
+const PHASES: usize = 8;
+
+fn species_files() -> Vec<Species> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("assets/species")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.to_string_lossy().ends_with(".ron"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(f).expect("readable species file");
+            Species::from_ron(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()))
+        })
+        .collect()
+}
+
+/// Applies `field=value` overrides (RON values) through the species' RON text.
+fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
+    let text = species.to_ron().expect("a species writes as RON");
+    let lines: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let key = line.trim_start().split(':').next().unwrap_or("");
+            match overrides.iter().find(|(k, _)| k == key) {
+                Some((k, v)) => format!("    {k}: {v},"),
+                None => line.to_string(),
+            }
+        })
+        .collect();
+    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
+}
+
+/// Outlines of one cycle, in bell diameters, world positions relative to the first.
+fn stroke(species: &Species, cycle: u32) -> Chart {
+    let mut sim = SliceSim::new(species).expect("valid species");
+    let period = species.period();
+    while sim.time() < cycle as f32 * period {
+        sim.advance(1.0 / 60.0);
+    }
+    let d = species.diameter;
+    let origin = sim.offset();
+    let start = sim.swim_distance();
+    let mut series = Vec::new();
+    for k in 0..PHASES {
+        let target = (cycle as f32 + k as f32 / PHASES as f32) * period;
+        while sim.time() < target - 1e-5 {
+            sim.advance(1.0 / 60.0);
+        }
+        let shade = (255.0 * k as f32 / PHASES as f32) as u8;
+        let color = [shade / 2, 60 + shade / 2, 255 - shade];
+        let to_plot = |p: &glam::Vec2| {
+            let w = *p + sim.offset() - origin;
+            (w.x / d, w.y / d)
+        };
+        let view = sim.view();
+        series.push(Series {
+            label: format!("phase {:.2}", k as f32 / PHASES as f32),
+            points: view.bell.iter().map(to_plot).collect(),
+            color,
+            markers: false,
+        });
+        for chain in view.tentacles {
+            series.push(Series {
+                label: String::new(),
+                points: chain.iter().map(to_plot).collect(),
+                color: [180, 180, 180],
+                markers: false,
+            });
+        }
+    }
+    while sim.time() < (cycle + 1) as f32 * period - 1e-5 {
+        sim.advance(1.0 / 60.0);
+    }
+    Chart {
+        title: format!(
+            "{} cycle {cycle}: {:.2} D swum",
+            species.name,
+            (sim.swim_distance() - start) / d
+        ),
+        x_label: "x (bell diameters)".into(),
+        y_label: "y (bell diameters)".into(),
+        series,
+        equal_aspect: true,
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let value = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+    };
+    let cycle: u32 = value("--cycle").and_then(|v| v.parse().ok()).unwrap_or(20);
+    let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
+    let overrides: Vec<(String, String)> = args
+        .windows(2)
+        .filter(|w| w[0] == "--set")
+        .filter_map(|w| {
+            w[1].split_once('=')
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+        })
+        .collect();
+    let charts: Vec<Chart> = species_files()
+        .into_iter()
+        .map(|s| stroke(&with_overrides(s, &overrides), cycle))
+        .collect();
+    let path = out.join("stroke.png");
+    match plot::write_png(&path, &charts, charts.len(), 420, 640) {
+        Ok(()) => println!("wrote {}", path.display()),
+        Err(e) => eprintln!("stroke: cannot write {}: {e}", path.display()),
+    }
+}

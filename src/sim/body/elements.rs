@@ -1,0 +1,191 @@
+//! The elastic elements of the bell: Hookean springs along the subumbrella and the
+//! tentacles, angular springs (hinges) holding its curvature, and muscle springs across it.
+//! Each is written as scalar constraints `C(x)` with energy `½·k·C²`, the form the
+//! implicit solve linearises.
+
+use super::Body;
+use glam::Vec2;
+
+/// A Hookean spring between two points.
+#[derive(Clone, Copy, Debug)]
+pub struct Spring {
+    pub a: usize,
+    pub b: usize,
+    /// Rest length, m.
+    pub rest: f32,
+    /// N/m per metre of depth: modulus × cross-section / rest length.
+    pub stiffness: f32,
+    /// Strain beyond which the spring stiffens [`STIFFENING`]-fold, if any.
+    pub strain_limit: Option<f32>,
+}
+
+/// Tentacle strain at which the tissue stiffens (Megill: mesoglea is linear "except for
+/// extremely large stresses, where it becomes more stiff"). Without it the soft tentacle
+/// springs (1/100 of the bell's cross-section) let the jet stretch tentacles to several
+/// times their length within a few strokes.
+pub const TENTACLE_STRAIN_LIMIT: f32 = 0.1;
+/// Hinge bending beyond which the mesoglea stiffens [`HINGE_STIFFENING`]-fold, rad. With
+/// plate-bending hinges alone, the wake of the 10-diameter box turned the bell inside out
+/// after about a dozen strokes; a gentle knee keeps the stroke soft and the bell upright.
+pub const BEND_LIMIT: f32 = 0.25;
+/// Hinge stiffening beyond [`BEND_LIMIT`]; a sharper knee (10×, 100×) made strokes jitter.
+pub const HINGE_STIFFENING: f32 = 3.0;
+/// How much stiffer a spring gets beyond its strain limit.
+pub const STIFFENING: f32 = 100.0;
+
+/// An angular spring holding the angle at `b` between `a` and `c`.
+#[derive(Clone, Copy, Debug)]
+pub struct Hinge {
+    pub a: usize,
+    pub b: usize,
+    pub c: usize,
+    /// Signed rest angle from `a - b` to `c - b`, rad.
+    pub rest: f32,
+    /// N·m/rad per metre of depth.
+    pub stiffness: f32,
+    /// Bending (rad from rest) beyond which the hinge stiffens [`HINGE_STIFFENING`]-fold.
+    pub bend_limit: f32,
+}
+
+/// A muscle spring across the bell; its rest length follows the contraction function.
+#[derive(Clone, Copy, Debug)]
+pub struct Muscle {
+    pub a: usize,
+    pub b: usize,
+    /// Rest length when relaxed, m.
+    pub relaxed: f32,
+    /// Current rest length, m (set by the muscle drive each step).
+    pub rest: f32,
+    pub stiffness: f32,
+    /// 0 nearest the apex, 1 at the margin: where the staggered expansion is slowest.
+    pub level: f32,
+}
+
+/// Hinge length the default `angular_stiffness` refers to, m (grid 100: half a 4 mm cell).
+pub const REFERENCE_HINGE_LENGTH: f32 = 0.002;
+
+pub(super) fn spring(points: &[Vec2], a: usize, b: usize, modulus_times_area: f32) -> Spring {
+    let rest = (points[b] - points[a]).length();
+    Spring {
+        a,
+        b,
+        rest,
+        stiffness: modulus_times_area / rest.max(1e-9),
+        strain_limit: None,
+    }
+}
+
+pub(super) fn hinge(points: &[Vec2], a: usize, b: usize, c: usize, stiffness: f32) -> Hinge {
+    Hinge {
+        a,
+        b,
+        c,
+        rest: signed_angle(points[a] - points[b], points[c] - points[b]),
+        stiffness,
+        bend_limit: BEND_LIMIT,
+    }
+}
+
+fn signed_angle(e1: Vec2, e2: Vec2) -> f32 {
+    e1.perp_dot(e2).atan2(e1.dot(e2))
+}
+
+pub(super) fn wrap_angle(a: f32) -> f32 {
+    let two_pi = std::f32::consts::TAU;
+    a - two_pi * ((a + std::f32::consts::PI) / two_pi).floor()
+}
+
+/// One scalar constraint `C(x)` with energy `½·k·C²`, over up to three points.
+#[derive(Clone, Copy)]
+pub(super) struct Constraint {
+    pub idx: [usize; 3],
+    pub grad: [Vec2; 3],
+    pub count: usize,
+    pub stiffness: f32,
+    /// `C` as the force sees it (past a knee, mapped onto the stiffer slope).
+    pub value: f32,
+    /// `C` itself: the strain or bend from rest.
+    pub raw: f32,
+    /// How much `raw` changed over the step, for the mesoglea's viscosity.
+    pub change: f32,
+}
+
+impl Constraint {
+    pub fn add_force(&self, out: &mut [Vec2]) {
+        self.add_damped_force(out, 0.0);
+    }
+
+    /// Adds the Kelvin–Voigt force `−k·(C + τ·dC/dt)·∇C`, with `damping = τ/dt` and the
+    /// rate taken over the step.
+    pub fn add_damped_force(&self, out: &mut [Vec2], damping: f32) {
+        let magnitude = self.stiffness * (self.value + damping * self.change);
+        for k in 0..self.count {
+            out[self.idx[k]] -= magnitude * self.grad[k];
+        }
+    }
+}
+
+/// Beyond `knee` (either sign), the same force at the knee and a `factor`-fold slope.
+fn stiffen_beyond(c: &mut Constraint, knee: f32, factor: f32) {
+    let excess = c.value.abs() - knee;
+    if excess > 0.0 {
+        c.value = c.value.signum() * (excess + knee / factor);
+        c.stiffness *= factor;
+    }
+}
+
+pub(super) fn constraints<'a>(
+    body: &'a Body,
+    x: &'a [Vec2],
+) -> impl Iterator<Item = Constraint> + 'a {
+    let stretch = |a: usize, b: usize, rest: f32, stiffness: f32| {
+        let d = x[b] - x[a];
+        let len = d.length();
+        let dir = if len > 1e-12 { d / len } else { Vec2::X };
+        Constraint {
+            idx: [a, b, b],
+            grad: [-dir, dir, Vec2::ZERO],
+            count: 2,
+            stiffness,
+            value: len - rest,
+            raw: len - rest,
+            change: 0.0,
+        }
+    };
+    let springs = body.springs.iter().map(move |s| {
+        let mut c = stretch(s.a, s.b, s.rest, s.stiffness);
+        if let Some(limit) = s.strain_limit {
+            stiffen_beyond(&mut c, limit * s.rest, STIFFENING);
+        }
+        c
+    });
+    // A muscle spring stands for the circumferential muscle and the ring of mesoglea it
+    // lines: it pulls while contracted and pushes the bell back open like the hoop
+    // elasticity of the 3D umbrella, which a slice has no other way to feel (paper 3.3:
+    // the rest lengths of these springs drive both contraction and re-expansion).
+    let muscles = body
+        .muscles
+        .iter()
+        .map(move |m| stretch(m.a, m.b, m.rest, m.stiffness));
+    let hinges = body.hinges.iter().map(move |h| {
+        let e1 = x[h.a] - x[h.b];
+        let e2 = x[h.c] - x[h.b];
+        let l1 = e1.length_squared().max(1e-18);
+        let l2 = e2.length_squared().max(1e-18);
+        let ga = -e1.perp() / l1;
+        let gc = e2.perp() / l2;
+        let bend = wrap_angle(signed_angle(e1, e2) - h.rest);
+        let mut c = Constraint {
+            idx: [h.a, h.b, h.c],
+            grad: [ga, -(ga + gc), gc],
+            count: 3,
+            stiffness: h.stiffness,
+            value: bend,
+            raw: bend,
+            change: 0.0,
+        };
+        stiffen_beyond(&mut c, h.bend_limit, HINGE_STIFFENING);
+        c
+    });
+    springs.chain(muscles).chain(hinges)
+}

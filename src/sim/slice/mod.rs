@@ -1,0 +1,385 @@
+//! [`SliceSim`]: one jellyfish slice, fluid and body stepped together in fixed steps of
+//! its own ([`clock`](super::clock)), in a box that follows the bell ([`frame`]), so a
+//! jellyfish swims for ever.
+
+mod frame;
+mod health;
+mod step;
+
+use super::SliceView;
+use super::body::{Body, Outline, signed_area};
+use super::clock::FixedClock;
+use super::coupling::Coupling;
+use super::fluid::Fluid;
+use super::muscle::MuscleDrive;
+use crate::species::{Species, SpeciesError};
+use frame::ComovingFrame;
+use glam::Vec2;
+/// Courant number the step is chosen for: how many cells the water expected in a stroke
+/// may cross per step. Advection alone is stable beyond 1, but at 1 (44 ms steps) the
+/// semi-implicit bell crumpled within a few strokes; at 0.5 it strokes cleanly.
+const COURANT: f32 = 0.5;
+/// At least this many steps per contraction cycle, so the muscle drive is resolved.
+const MIN_STEPS_PER_CYCLE: u32 = 32;
+/// The fastest water of a stroke, in units of the margin's mean inward speed
+/// (`(1 − ratio)·D/2` in `duty·T`): the jet leaves the aperture faster than the margin
+/// closes. Measured: see [`SliceSim::steps_per_cycle`].
+const JET_SPEED_FACTOR: f32 = 4.0;
+/// Depth of the absorbing layer at the wake end, in bell diameters.
+const SPONGE_DIAMETERS: f32 = 1.0;
+/// Damping rate at the wake end, per contraction cycle.
+const SPONGE_RATE: f32 = 4.0;
+/// Water ahead of the bell's apex, in bell diameters: the rest of the box is for the wake.
+const BOW_DIAMETERS: f32 = 1.5;
+
+pub struct SliceSim {
+    species: Species,
+    fluid: Fluid,
+    body: Body,
+    drive: MuscleDrive,
+    clock: FixedClock,
+    swim_distance: f64,
+    /// The box's motion along the channel.
+    frame: ComovingFrame,
+    /// World position of the box across the channel: the sum of whole-cell shifts, m.
+    across: f32,
+    /// Where the bell's centroid is held, in domain coordinates.
+    home: Vec2,
+    /// The bell's centroid relative to home after the last healthy step.
+    drift: Vec2,
+    recoveries: u32,
+    /// A bound on max |u| after the last step (NaN if the water blew up), m/s.
+    speed: f32,
+    /// Hold the slice mirror-symmetric about its axis (see [`SliceSim::set_mirror_symmetry`]).
+    mirror_symmetry: bool,
+    /// Coupled substeps taken (a fixed step is one, or two or four when split).
+    substeps: u64,
+    last_substeps: usize,
+    coupling: Coupling,
+    velocity: Vec<Vec2>,
+    predicted: Vec<Vec2>,
+    forces: Vec<Vec2>,
+    /// Tentacle points' slip through the water over the last step, m.
+    slip: Vec<Vec2>,
+    rest_bell: Vec<Vec2>,
+    tentacle_view: [Vec<Vec2>; 2],
+}
+
+impl SliceSim {
+    /// A slice at rest in still water; the species is validated first.
+    pub fn new(species: &Species) -> Result<Self, SpeciesError> {
+        species.validate()?;
+        let n = species.grid_resolution as usize;
+        let h = species.cell_size();
+        let mut fluid = Fluid::new(n, h, species.kinematic_viscosity(), species.density);
+        fluid.advection = species.advection;
+        fluid.kernel = species.kernel;
+        fluid.kernel_stretch = Self::kernel_stretch(species);
+        fluid.mirror = true;
+        let sponge_cells = (SPONGE_DIAMETERS * species.diameter / h).round() as usize;
+        fluid.set_sponge(sponge_cells, SPONGE_RATE * species.contraction_frequency);
+        let body = Body::new(species, Self::rest_origin(species, &fluid), h);
+        let home = body.bell_centroid();
+        let rest_bell = body.bell_points().to_vec();
+        let count = body.points.len();
+        let mut sim = Self {
+            species: species.clone(),
+            fluid,
+            body,
+            drive: MuscleDrive::new(species),
+            clock: FixedClock::new(species.period(), Self::steps_per_cycle(species)),
+            swim_distance: 0.0,
+            frame: ComovingFrame::new(species.period()),
+            across: 0.0,
+            home,
+            drift: Vec2::ZERO,
+            recoveries: 0,
+            speed: 0.0,
+            mirror_symmetry: true,
+            substeps: 0,
+            last_substeps: 0,
+            coupling: Coupling::default(),
+            velocity: vec![Vec2::ZERO; count],
+            predicted: vec![Vec2::ZERO; count],
+            forces: vec![Vec2::ZERO; count],
+            slip: vec![Vec2::ZERO; count],
+            rest_bell,
+            tentacle_view: [Vec::new(), Vec::new()],
+        };
+        sim.refresh_view();
+        Ok(sim)
+    }
+
+    /// Adds `dt` seconds to the slice's clock and takes the fixed steps that pays for
+    /// ([`Self::step_length`]): any split of the same total time gives the same state. A
+    /// `dt` that is not finite or not positive does nothing; one huge `dt` takes at most
+    /// [`MAX_STEPS_PER_ADVANCE`](super::clock::MAX_STEPS_PER_ADVANCE) steps.
+    pub fn advance(&mut self, dt: f32) {
+        self.advance_with(dt, |_| {});
+    }
+
+    /// [`Self::advance`], calling `after_step` with the slice after each fixed step (to
+    /// keep the states a renderer interpolates between).
+    pub fn advance_with(&mut self, dt: f32, mut after_step: impl FnMut(&Self)) {
+        let due = self.clock.add(dt as f64);
+        let before = self.substeps;
+        for _ in 0..due {
+            self.fixed_step();
+            self.refresh_view();
+            after_step(self);
+        }
+        self.last_substeps = (self.substeps - before) as usize;
+    }
+
+    /// Fixed steps per contraction cycle for `species`: enough to resolve the muscle drive
+    /// (at least 32) and to keep the water expected in a stroke under half a cell per step.
+    pub fn steps_per_cycle(species: &Species) -> u32 {
+        let margin_speed = (1.0 - species.contraction_ratio) * 0.5 * species.diameter
+            / (species.contraction_duty * species.period());
+        let expected = JET_SPEED_FACTOR * margin_speed;
+        let courant = species.period() * expected / (COURANT * species.cell_size());
+        let steps = courant.ceil().max(MIN_STEPS_PER_CYCLE as f32);
+        if steps.is_finite() {
+            steps.min(1e6) as u32
+        } else {
+            MIN_STEPS_PER_CYCLE
+        }
+    }
+
+    /// Where the aperture's centre sits at rest, in domain coordinates: on the axis, with
+    /// [`BOW_DIAMETERS`] of water ahead of the apex and the rest of the box for the wake.
+    fn rest_origin(species: &Species, fluid: &Fluid) -> Vec2 {
+        let size = fluid.size();
+        let below_top = BOW_DIAMETERS * species.diameter + species.height;
+        Vec2::new(
+            fluid.axis(),
+            (size - below_top).max(0.5 * size - 0.5 * species.height),
+        )
+    }
+
+    /// How many times three cells the immersed-boundary kernel spans: the species'
+    /// `boundary_width`, never less than three cells.
+    pub fn kernel_stretch(species: &Species) -> f32 {
+        let width = species.boundary_width * species.diameter;
+        (width / (3.0 * species.cell_size())).max(1.0)
+    }
+
+    /// The slice's fixed step for `species`, s: a whole fraction of the contraction period.
+    pub fn step_length(species: &Species) -> f32 {
+        species.period() / Self::steps_per_cycle(species) as f32
+    }
+
+    fn refresh_view(&mut self) {
+        let bell = self.body.bell_points();
+        let margins = [bell[0], bell[bell.len() - 1]];
+        for ((view, margin), range) in self
+            .tentacle_view
+            .iter_mut()
+            .zip(margins)
+            .zip(&self.body.tentacles)
+        {
+            view.clear();
+            view.push(margin);
+            view.extend_from_slice(&self.body.points[range.clone()]);
+        }
+    }
+
+    // --- The headless API of DESIGN.md section 4 ---
+
+    /// Simulated seconds of the state: the end of the last fixed step.
+    pub fn time(&self) -> f32 {
+        self.clock.time() as f32
+    }
+
+    /// The slice's clock: time added, steps taken, and how far past the state it is.
+    pub fn clock(&self) -> &FixedClock {
+        &self.clock
+    }
+
+    /// Metres travelled along the bell's axis, apex direction positive, since the start,
+    /// through any recentring of the domain.
+    pub fn swim_distance(&self) -> f32 {
+        self.swim_distance as f32
+    }
+
+    /// Subumbrellar points in domain coordinates, m (left margin, apex, right margin).
+    pub fn bell_points(&self) -> &[Vec2] {
+        self.body.bell_points()
+    }
+
+    /// max |div u| after the last projection, 1/s.
+    pub fn fluid_divergence_max(&self) -> f32 {
+        self.fluid.divergence_max()
+    }
+
+    /// max |u| over the grid, m/s.
+    pub fn fluid_speed_max(&self) -> f32 {
+        self.fluid.speed_max()
+    }
+
+    // --- More ---
+
+    pub fn species(&self) -> &Species {
+        &self.species
+    }
+
+    /// The slice as the renderer needs it: bell, rest bell and tentacles, all in domain
+    /// coordinates.
+    pub fn view(&self) -> SliceView<'_> {
+        SliceView {
+            bell: self.body.bell_points(),
+            rest_bell: &self.rest_bell,
+            tentacles: [&self.tentacle_view[0], &self.tentacle_view[1]],
+        }
+    }
+
+    /// The fluid grid (for debug overlays and tests).
+    pub fn fluid(&self) -> &Fluid {
+        &self.fluid
+    }
+
+    /// The spring-mass body.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// World position of the domain origin; world = domain + offset.
+    pub fn offset(&self) -> Vec2 {
+        Vec2::new(self.across, self.frame.position as f32)
+    }
+
+    /// Velocity of the box (the frame the fluid's velocities are relative to), m/s.
+    pub fn frame_velocity(&self) -> Vec2 {
+        Vec2::Y * self.frame.velocity
+    }
+
+    /// Centroid of the bell in world coordinates, m.
+    pub fn bell_centroid_world(&self) -> Vec2 {
+        self.body.bell_centroid() + self.offset()
+    }
+
+    /// Unit vector from the aperture centre to the apex.
+    pub fn axis(&self) -> Vec2 {
+        self.body.axis()
+    }
+
+    /// Tilt of the axis from +y, rad (positive = counter-clockwise).
+    pub fn tilt(&self) -> f32 {
+        let a = self.axis();
+        (-a.x).atan2(a.y)
+    }
+
+    /// Area enclosed by the subumbrella and the aperture chord, m² per metre of depth.
+    pub fn bell_area(&self) -> f32 {
+        self.body.bell_area()
+    }
+
+    /// The bell's outline against its rest shape: whole, crossed or inside out.
+    pub fn outline(&self) -> Outline {
+        Outline::of(self.body.bell_points(), signed_area(&self.rest_bell))
+    }
+
+    /// Contraction cycle phase of the state in [0, 1).
+    pub fn phase(&self) -> f32 {
+        self.clock.phase()
+    }
+
+    /// Completed contraction cycles.
+    pub fn cycle(&self) -> u64 {
+        self.clock.cycle()
+    }
+
+    /// Whether the slice is held mirror-symmetric about the vertical through the domain
+    /// centre (on by default). The paper models axially symmetric jellyfish; a 2D wake,
+    /// unlike a 3D vortex ring, sheds asymmetrically and tips a free slice over within a
+    /// few strokes from round-off alone. Turn it off to let the slice tilt (steering).
+    pub fn set_mirror_symmetry(&mut self, on: bool) {
+        self.mirror_symmetry = on;
+        self.fluid.mirror = on;
+    }
+
+    /// Moves the clock to `time` seconds without stepping: individuals spawned together
+    /// then beat out of step (a phase offset) at no cost, and take their steps on
+    /// different frames. Meant for a fresh slice; a negative or non-finite `time` does
+    /// nothing.
+    pub fn set_time(&mut self, time: f32) {
+        self.clock.start_at(time as f64);
+    }
+
+    /// How often a blown-up state was detected and restarted.
+    pub fn recoveries(&self) -> u32 {
+        self.recoveries
+    }
+
+    /// Coupled steps taken since the start (a fixed step split in two counts two).
+    pub fn steps(&self) -> u64 {
+        self.substeps
+    }
+
+    /// Coupled steps the last `advance` took.
+    pub fn last_substeps(&self) -> usize {
+        self.last_substeps
+    }
+
+    /// Corrupts one body point with NaN, as a blow-up would: for testing recovery.
+    #[doc(hidden)]
+    pub fn poison_for_tests(&mut self) {
+        self.body.points[0] = Vec2::NAN;
+    }
+
+    /// Folds each margin across the other half of the bell, as a crumpling bell would (and
+    /// symmetrically, so the mirror symmetry keeps the fold): for testing that the health
+    /// check sees a crossed outline.
+    #[doc(hidden)]
+    pub fn fold_for_tests(&mut self) {
+        let n = self.body.bell.len();
+        let p = &mut self.body.points;
+        let (apex, left, right) = (p[n / 2], p[0], p[n - 1]);
+        let (reach, height) = (0.3 * self.species.diameter, 0.5 * (apex.y + right.y));
+        // Out past the other side, half way up: the margins' edges cut across the bell.
+        p[0] = Vec2::new(right.x + reach, height);
+        p[n - 1] = Vec2::new(left.x - reach, height);
+    }
+
+    /// Applies new parameters to a living slice. Muscle timing, stiffness and water take
+    /// effect at once; a change of geometry or grid rebuilds the slice at rest in place,
+    /// keeping time, distance and world position.
+    pub fn set_species(&mut self, species: &Species) -> Result<(), SpeciesError> {
+        species.validate()?;
+        let rebuild = species.grid_resolution != self.species.grid_resolution
+            || species.diameter != self.species.diameter
+            || species.height != self.species.height
+            || species.domain_diameters != self.species.domain_diameters
+            || species.tentacle_length != self.species.tentacle_length
+            || species.thickness != self.species.thickness;
+        if rebuild {
+            let mut fresh = SliceSim::new(species)?;
+            fresh.clock = self
+                .clock
+                .retimed(species.period(), Self::steps_per_cycle(species));
+            fresh.swim_distance = self.swim_distance;
+            let world = self.bell_centroid_world() - fresh.body.bell_centroid();
+            fresh.across = world.x;
+            fresh.frame.position = world.y as f64;
+            fresh.recoveries = self.recoveries;
+            *self = fresh;
+            return Ok(());
+        }
+        let h = self.fluid.h;
+        let mut rebuilt = Body::new(species, Vec2::ZERO, h);
+        // Same topology: keep positions, take the new stiffnesses.
+        rebuilt.points.clone_from(&self.body.points);
+        self.body = rebuilt;
+        self.fluid.nu = species.kinematic_viscosity();
+        self.fluid.rho = species.density;
+        self.fluid.advection = species.advection;
+        self.fluid.kernel = species.kernel;
+        self.fluid.kernel_stretch = Self::kernel_stretch(species);
+        self.drive = MuscleDrive::new(species);
+        self.clock = self
+            .clock
+            .retimed(species.period(), Self::steps_per_cycle(species));
+        self.species = species.clone();
+        Ok(())
+    }
+}

@@ -1,0 +1,126 @@
+//! The coupled step, in the paper's order (section 3.2):
+//! 1. muscles set their rest lengths for the end of the step;
+//! 2. the body predicts where the water carries it and finds its spring forces there
+//!    (semi-implicit, see [`Body::implicit_forces`](crate::sim::body::Body::implicit_forces));
+//! 3. the forces are spread to the grid and the fluid steps (advect, force, diffuse,
+//!    project);
+//! 4. the points move with the new, divergence-free velocity;
+//! 5. the frame follows the bell.
+
+use super::SliceSim;
+use glam::Vec2;
+
+/// The fluid mass a body point drags along in one step, in units of `ρ·h²` (per metre of
+/// depth). The semi-implicit forces are stable for any stiffness while this stays below
+/// about 4/3 of the true value; spreading a point at half-cell spacing gives about 1 for
+/// the smooth modes, so 0.5 is safe and still settles a stiff spring within two or three
+/// steps.
+pub(super) const ADDED_MASS: f32 = 0.5;
+/// A fixed step is split in two (then four …) when the measured flow would cross more
+/// cells than this in it; the split depends only on the state, so it is the same every run.
+const COURANT_SPLIT: f32 = 1.0;
+
+impl SliceSim {
+    /// One fixed step, split in 2ᵏ equal substeps if the water is faster than expected.
+    pub(super) fn fixed_step(&mut self) {
+        let dt = self.clock.step() as f32;
+        let crossing = self.speed * dt / self.fluid.h;
+        let mut split = 1u32;
+        while (split as f32) * COURANT_SPLIT < crossing && split < 64 {
+            split *= 2;
+        }
+        let per_cycle = self.clock.steps_per_cycle() as u64;
+        let first = (self.clock.steps() % per_cycle) * split as u64;
+        let n = per_cycle * split as u64;
+        for s in 1..=split as u64 {
+            let phase = ((first + s) % n) as f32 / n as f32;
+            self.step(dt / split as f32, phase);
+        }
+        self.clock.tick();
+    }
+
+    /// One coupled step of `dt` seconds, ending at muscle phase `phase`.
+    fn step(&mut self, dt: f32, phase: f32) {
+        self.set_muscles(phase);
+        self.substeps += 1;
+        self.coupling.locate(&self.fluid, &self.body.points);
+        self.coupling.interpolate(&self.fluid, &mut self.velocity);
+        for ((x, v), p) in self
+            .body
+            .points
+            .iter()
+            .zip(&self.velocity)
+            .zip(&mut self.predicted)
+        {
+            *p = *x + dt * *v;
+        }
+        let mass = ADDED_MASS * self.species.density * self.fluid.h * self.fluid.h;
+        self.body.implicit_forces(
+            &self.predicted,
+            dt,
+            mass / (dt * dt),
+            &mut self.forces,
+            &mut self.slip,
+        );
+        self.coupling.spread(&mut self.fluid, &self.forces);
+
+        self.fluid.step(dt);
+        self.speed = self.fluid.speed_bound();
+
+        let before = self.body.bell_centroid();
+        self.coupling.interpolate(&self.fluid, &mut self.velocity);
+        for ((x, v), slip) in self
+            .body
+            .points
+            .iter_mut()
+            .zip(&self.velocity)
+            .zip(&self.slip)
+        {
+            *x += dt * *v + *slip;
+        }
+        self.body.relax_unresolved(&self.forces, dt * dt / mass);
+        if self.mirror_symmetry {
+            self.body.symmetrise(self.fluid.axis());
+        }
+        self.body.keep_tentacles_outside();
+
+        if !self.healthy() {
+            self.recover();
+            return;
+        }
+        let moved = self.body.bell_centroid() - before;
+        let world = moved + Vec2::Y * self.frame.velocity * dt;
+        self.swim_distance += world.dot(self.body.axis()) as f64;
+        self.follow(dt, moved.y);
+    }
+
+    fn set_muscles(&mut self, phase: f32) {
+        for m in &mut self.body.muscles {
+            m.rest = m.relaxed * self.drive.rest_factor(phase, m.level);
+        }
+    }
+
+    /// The frame follows the bell along the channel; across it (only a slice that is not
+    /// mirror-symmetric drifts sideways) the box shifts by whole cells when the bell is more
+    /// than a cell off the axis.
+    fn follow(&mut self, dt: f32, moved_along: f32) {
+        let from_home = self.body.bell_centroid() - self.home;
+        self.drift = from_home;
+        let change = self.frame.follow(dt, moved_along, from_home.y);
+        self.fluid.change_frame(change);
+        let h = self.fluid.h;
+        let dx = if from_home.x > h {
+            1
+        } else if from_home.x < -h {
+            -1
+        } else {
+            0
+        };
+        if dx != 0 {
+            self.fluid.shift_across(dx);
+            let shift = Vec2::X * dx as f32 * h;
+            self.body.points.iter_mut().for_each(|p| *p -= shift);
+            self.across += shift.x;
+        }
+    }
+}
