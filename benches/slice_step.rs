@@ -53,8 +53,20 @@ fn stam_step(c: &mut Criterion) {
 /// Per step and per simulated second, and the cost of a coupled step against Stam's.
 fn report(_: &mut Criterion) {
     println!("\n== slice simulation throughput (one core) ==");
-    for grid in [60, 100] {
-        let mut sim = warmed_up(grid);
+    let default = Species::aurelia();
+    let paper = Species::aurelia().with_paper_numerics();
+    let fine = Species {
+        grid_resolution: 100,
+        ..Species::aurelia()
+    };
+    for (label, species) in [
+        ("default, grid 60 over 6 D", default),
+        ("paper's grid 100 over 10 D", paper),
+        ("default box at grid 100", fine),
+    ] {
+        let grid = species.grid_resolution;
+        let mut sim = SliceSim::new(&species).expect("valid species");
+        sim.advance(species.period());
         let (t0, steps0) = (sim.time(), sim.steps());
         let start = Instant::now();
         while start.elapsed().as_secs_f32() < 2.0 {
@@ -66,7 +78,7 @@ fn report(_: &mut Criterion) {
         let mut stam = StamFluid::new(grid as usize);
         let baseline = time_of(|| stam.step(0.02));
         println!(
-            "grid {grid:3}: {:.0} us per step, {:.1} ms per simulated s, {:.0} simulated s per \
+            "{label}: {:.0} us per step, {:.1} ms per simulated s, {:.0} simulated s per \
              wall s ({} steps of {:.1} ms); plain Stam step {:.0} us, ratio {:.2}",
             wall * 1e6 / steps as f64,
             wall * 1e3 / simulated,

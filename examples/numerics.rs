@@ -32,33 +32,20 @@ impl Run {
     }
 }
 
-/// Swims `species` with `advance(frame)` calls and records the distance at each cycle
-/// boundary (interpolated between the frames around it).
+/// Swims `species` with `advance(frame)` calls and records the distance at each cycle's
+/// first step (exactly phase 0, whatever the frame rate).
 fn swim(species: &Species, frame: f32, from: u32, to: u32) -> Run {
     let mut sim = SliceSim::new(species).expect("valid species");
-    let period = species.period() as f64;
-    let start_time = sim.time() as f64;
-    let mut boundaries = Vec::with_capacity(to as usize + 1);
-    let (mut t0, mut d0) = (start_time, sim.swim_distance() as f64);
+    let mut boundaries = vec![0.0f64];
     let clock = Instant::now();
     let mut frames = 0u64;
     while boundaries.len() <= to as usize {
         frames += 1;
-        sim.advance(frame);
-        let (t1, d1) = (
-            start_time + frames as f64 * frame as f64,
-            sim.swim_distance() as f64,
-        );
-        let next = start_time + boundaries.len() as f64 * period;
-        if t1 >= next {
-            let f = if t1 > t0 {
-                (next - t0) / (t1 - t0)
-            } else {
-                1.0
-            };
-            boundaries.push(d0 + f.clamp(0.0, 1.0) * (d1 - d0));
-        }
-        (t0, d0) = (t1, d1);
+        sim.advance_with(frame, |sim| {
+            if sim.phase() == 0.0 {
+                boundaries.push(sim.swim_distance() as f64);
+            }
+        });
     }
     let cost = clock.elapsed().as_secs_f64() / (frames as f64 * frame as f64);
     let d = species.diameter as f64;
@@ -254,15 +241,11 @@ fn crumples(species: &[Species], cycles: u32) {
         let mut last = (0u64, 0.0f32);
         let mut frame = 0u64;
         while sim.cycle() < cycles as u64 {
-            sim.advance(1.0 / 60.0);
-            frame += 1;
-            if frame.is_multiple_of(3) {
-                let o = sim.outline();
-                samples += 1;
-                crumpled += o.crumpled() as u64;
-                smallest = smallest.min(o.area_ratio);
-            }
-            if sim.cycle() != last.0 {
+            // Each cycle's first step is exactly phase 0, at any frame rate.
+            sim.advance_with(1.0 / 60.0, |sim| {
+                if sim.phase() != 0.0 {
+                    return;
+                }
                 let a = sim.outline().area_ratio;
                 if sim.cycle() == 5 {
                     reference = Some(a);
@@ -274,6 +257,13 @@ fn crumples(species: &[Species], cycles: u32) {
                     per_cycle.push((sim.swim_distance() - last.1) / s.diameter);
                 }
                 last = (sim.cycle(), sim.swim_distance());
+            });
+            frame += 1;
+            if frame.is_multiple_of(3) {
+                let o = sim.outline();
+                samples += 1;
+                crumpled += o.crumpled() as u64;
+                smallest = smallest.min(o.area_ratio);
             }
         }
         let run = Run {

@@ -71,7 +71,7 @@ fn each_slider_edits_the_field_it_names() {
 fn slider_ranges_hold_every_shipped_species() {
     let species = shipped();
     for param in SECTIONS.iter().flat_map(|s| s.params) {
-        let (lo, hi) = (*param.range.start(), *param.range.end());
+        let (lo, hi) = (*param.range().start(), *param.range().end());
         assert!(lo < hi, "{}", param.field);
         assert!(
             !param.logarithmic || lo > 0.0,
@@ -91,6 +91,30 @@ fn slider_ranges_hold_every_shipped_species() {
                 s.name
             );
         }
+    }
+}
+
+#[test]
+fn sliders_span_the_limits_table_and_show_it() {
+    use bevy_jellyfish::species::limits;
+    for param in SECTIONS.iter().flat_map(|s| s.params) {
+        let limit = limits::of(param.field).expect("a slider's field has a limit");
+        assert_eq!(
+            param.range(),
+            limit.min * param.scale..=limit.max * param.scale,
+            "{}",
+            param.field
+        );
+        assert!(param.range_text().contains('–'), "{}", param.range_text());
+    }
+    // Every numeric field of the table has its slider or its own widget.
+    for limit in limits::LIMITS {
+        let field = limit.field.split('[').next().unwrap();
+        let slider = SECTIONS
+            .iter()
+            .flat_map(|s| s.params)
+            .any(|p| p.field == field);
+        assert!(slider || OTHER_FIELDS.contains(&field), "{field}");
     }
 }
 

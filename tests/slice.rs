@@ -333,20 +333,21 @@ fn species_edits_reach_a_living_slice() {
 
 // --- Long checks: run in release with `--ignored --nocapture`; each prints its figures. ---
 
-/// Distance per cycle in diameters for cycles `from..to`, at 60 Hz frames.
+/// Distance per cycle in diameters for cycles `from..to`, at 60 Hz frames, measured at
+/// each cycle's first step (exactly phase 0).
 fn per_cycle(species: &Species, from: u64, to: u64) -> Vec<f32> {
     let mut sim = SliceSim::new(species).unwrap();
     let mut out = Vec::new();
     let mut last = 0.0;
     while sim.cycle() < to {
-        let before = sim.cycle();
-        sim.advance(1.0 / 60.0);
-        if sim.cycle() != before {
-            if before >= from {
-                out.push((sim.swim_distance() - last) / species.diameter);
+        sim.advance_with(1.0 / 60.0, |sim| {
+            if sim.phase() == 0.0 && sim.cycle() <= to {
+                if sim.cycle() > from {
+                    out.push((sim.swim_distance() - last) / species.diameter);
+                }
+                last = sim.swim_distance();
             }
-            last = sim.swim_distance();
-        }
+        });
     }
     out
 }
@@ -477,28 +478,30 @@ fn tentacles_slow_the_bell_down() {
 }
 
 /// Whole bells over `cycles` strokes at `hz` frames: crumpled samples (every third
-/// frame), the area at phase 0 against cycle 5, recoveries.
+/// frame), the area at phase 0 (the step that starts a cycle) against cycle 5,
+/// recoveries.
 fn whole_bell(species: &Species, cycles: u64, hz: f32) -> (u64, u64, f32, u32) {
     let mut sim = SliceSim::new(species).unwrap();
     let (mut samples, mut crumpled, mut drift) = (0u64, 0u64, 0.0f32);
     let mut reference = None;
     let mut frame = 0u64;
     while sim.cycle() < cycles {
-        let before = sim.cycle();
-        sim.advance(1.0 / hz);
+        sim.advance_with(1.0 / hz, |sim| {
+            if sim.phase() == 0.0 {
+                let area = sim.outline().area_ratio;
+                if sim.cycle() == 5 {
+                    reference = Some(area);
+                }
+                if let Some(r) = reference {
+                    drift = drift.max((area / r - 1.0).abs());
+                }
+            }
+        });
         frame += 1;
-        let outline: Outline = sim.outline();
         if frame.is_multiple_of(3) {
+            let outline: Outline = sim.outline();
             samples += 1;
             crumpled += outline.crumpled() as u64;
-        }
-        if sim.cycle() != before {
-            if sim.cycle() == 5 {
-                reference = Some(outline.area_ratio);
-            }
-            if let Some(r) = reference {
-                drift = drift.max((outline.area_ratio / r - 1.0).abs());
-            }
         }
     }
     (crumpled, samples, drift, sim.recoveries())
@@ -523,4 +526,58 @@ fn bells_stay_whole_for_a_thousand_strokes() {
             assert_eq!(recoveries, 0, "{}", species.name);
         }
     }
+}
+
+/// Distance in 20 s, diameters, at each of `frequencies` (the paper's Fig. 5 measure).
+fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
+    std::thread::scope(|s| {
+        let runs: Vec<_> = frequencies
+            .iter()
+            .map(|&f| {
+                s.spawn(move || {
+                    let species = Species {
+                        contraction_frequency: f,
+                        ..base.clone()
+                    };
+                    let mut sim = SliceSim::new(&species).unwrap();
+                    while sim.time() < 20.0 {
+                        sim.advance(0.1);
+                    }
+                    sim.swim_distance() / species.diameter
+                })
+            })
+            .collect();
+        runs.into_iter().map(|r| r.join().unwrap()).collect()
+    })
+}
+
+#[test]
+#[ignore = "long: 2 × 15 runs of 20 s"]
+fn the_sweep_peaks_at_the_bells_resonance() {
+    let frequencies: Vec<f32> = (2..=16).map(|k| k as f32 / 10.0).collect();
+    let peak = |d: &[f32]| {
+        let (i, best) = d
+            .iter()
+            .enumerate()
+            .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
+        (frequencies[i], best)
+    };
+    let base = Species::aurelia();
+    let d = sweep(&base, &frequencies);
+    let (f, best) = peak(&d);
+    let (low, high) = (d[0], d[d.len() - 1]);
+    println!("default: peak {f} Hz, {best:.2} D in 20 s; ends {low:.2} and {high:.2} D: {d:.2?}");
+    assert!((0.4..=1.2).contains(&f), "peak at {f} Hz");
+    assert!(best >= 1.15 * low && best >= 1.15 * high);
+    // The peak comes from the bell: a stiffer bell resonates, and swims best, higher.
+    let stiffer = Species {
+        elastic_modulus: 2.0 * base.elastic_modulus,
+        ..base
+    };
+    let (f_stiff, _) = peak(&sweep(&stiffer, &frequencies));
+    println!("bell twice as stiff: peak {f_stiff} Hz");
+    assert!(
+        f_stiff > f,
+        "stiffer peaks at {f_stiff} Hz, default at {f} Hz"
+    );
 }

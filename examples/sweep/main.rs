@@ -1,10 +1,12 @@
 //! The paper's Fig. 5: how far the default jellyfish swims in a fixed time at contraction
-//! frequencies from 0.2 to 1.6 Hz, with staggered and with unison re-expansion.
+//! frequencies from 0.2 to 1.6 Hz (0.1 Hz apart), with staggered and with unison
+//! re-expansion, and with a bell twice as stiff, whose resonance (and so its best
+//! frequency) lies higher.
 //!
-//! Prints a table, writes `sweep.csv` and `sweep.png` (distance against frequency;
-//! trajectories against time) into `--out` (default `docs/`).
+//! Prints a table and the peaks, writes `sweep.csv` and `sweep.png` (distance against
+//! frequency; trajectories against time) into `--out` (default `docs/`).
 //!
-//! `cargo run --release --no-default-features --example sweep -- [--seconds 20] [--grid 100] [--out docs]`
+//! `cargo run --release --no-default-features --example sweep -- [--seconds 20] [--grid G] [--out docs]`
 
 mod plot;
 
@@ -12,15 +14,41 @@ use bevy_jellyfish::{SliceSim, Species};
 use plot::{Chart, Series};
 use std::io::Write;
 use std::path::PathBuf;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
 
-const FREQUENCIES: [f32; 8] = [0.2, 0.4, 0.6, 0.7, 0.8, 1.0, 1.2, 1.6];
-const STAGGERS: [(f32, &str); 2] = [(1.0, "staggered"), (0.0, "unison")];
+/// One line of the sweep: a label and how it changes the default species.
+struct Variant {
+    label: &'static str,
+    color: [u8; 3],
+    apply: fn(&mut Species),
+}
+
+const VARIANTS: [Variant; 3] = [
+    Variant {
+        label: "staggered",
+        color: [31, 119, 180],
+        apply: |_| {},
+    },
+    Variant {
+        label: "unison",
+        color: [214, 39, 40],
+        apply: |s| s.expansion_stagger = 0.0,
+    },
+    Variant {
+        label: "staggered, bell 2x stiffer",
+        color: [44, 160, 44],
+        apply: |s| s.elastic_modulus *= 2.0,
+    },
+];
+
+fn frequencies() -> Vec<f32> {
+    (2..=16).map(|k| k as f32 / 10.0).collect()
+}
 
 struct Run {
+    variant: usize,
     frequency: f32,
-    stagger: f32,
     /// (time s, distance m)
     trajectory: Vec<(f32, f32)>,
     recoveries: u32,
@@ -28,14 +56,14 @@ struct Run {
 
 struct Options {
     seconds: f32,
-    grid: u32,
+    grid: Option<u32>,
     out: PathBuf,
 }
 
 fn parse_options() -> Result<Options, String> {
     let mut o = Options {
         seconds: 20.0,
-        grid: 100,
+        grid: None,
         out: PathBuf::from("docs"),
     };
     let mut args = std::env::args().skip(1);
@@ -43,7 +71,7 @@ fn parse_options() -> Result<Options, String> {
         let mut value = || args.next().ok_or(format!("{flag} needs a value"));
         match flag.as_str() {
             "--seconds" => o.seconds = value()?.parse().map_err(|e| format!("--seconds: {e}"))?,
-            "--grid" => o.grid = value()?.parse().map_err(|e| format!("--grid: {e}"))?,
+            "--grid" => o.grid = Some(value()?.parse().map_err(|e| format!("--grid: {e}"))?),
             "--out" => o.out = PathBuf::from(value()?),
             other => return Err(format!("unknown argument {other}")),
         }
@@ -51,21 +79,26 @@ fn parse_options() -> Result<Options, String> {
     Ok(o)
 }
 
-fn simulate(frequency: f32, stagger: f32, o: &Options) -> Result<Run, String> {
-    let mut species = Species::aurelia();
-    species.contraction_frequency = frequency;
-    species.expansion_stagger = stagger;
-    species.grid_resolution = o.grid;
-    let mut sim = SliceSim::new(&species).map_err(|e| e.to_string())?;
-    let sample = 0.1;
+fn species(variant: usize, frequency: f32, o: &Options) -> Species {
+    let mut s = Species::aurelia();
+    (VARIANTS[variant].apply)(&mut s);
+    s.contraction_frequency = frequency;
+    if let Some(grid) = o.grid {
+        s.grid_resolution = grid;
+    }
+    s
+}
+
+fn simulate(variant: usize, frequency: f32, o: &Options) -> Result<Run, String> {
+    let mut sim = SliceSim::new(&species(variant, frequency, o)).map_err(|e| e.to_string())?;
     let mut trajectory = vec![(0.0, 0.0)];
     while sim.time() < o.seconds - 1e-4 {
-        sim.advance(sample);
+        sim.advance(0.1);
         trajectory.push((sim.time(), sim.swim_distance()));
     }
     Ok(Run {
+        variant,
         frequency,
-        stagger,
         trajectory,
         recoveries: sim.recoveries(),
     })
@@ -73,46 +106,32 @@ fn simulate(frequency: f32, stagger: f32, o: &Options) -> Result<Run, String> {
 
 fn main() {
     let o = match parse_options() {
-        Ok(o) => Arc::new(o),
+        Ok(o) => o,
         Err(e) => {
             eprintln!("sweep: {e}");
             std::process::exit(2);
         }
     };
-    let jobs: Vec<(f32, f32)> = STAGGERS
-        .iter()
-        .flat_map(|(s, _)| FREQUENCIES.iter().map(move |f| (*f, *s)))
+    let jobs: Vec<(usize, f32)> = (0..VARIANTS.len())
+        .flat_map(|v| frequencies().into_iter().map(move |f| (v, f)))
         .collect();
-    let total = jobs.len();
-    let jobs = Arc::new(Mutex::new(jobs));
-    let done = Arc::new(AtomicUsize::new(0));
-    let runs = Arc::new(Mutex::new(Vec::new()));
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    let runs = Mutex::new(Vec::new());
     let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
-    progress(0, total);
-    let handles: Vec<_> = (0..workers)
-        .map(|_| {
-            let (jobs, done, runs, o) = (jobs.clone(), done.clone(), runs.clone(), o.clone());
-            std::thread::spawn(move || {
-                while let Some((f, s)) = jobs.lock().unwrap().pop() {
-                    let run = simulate(f, s, &o);
+    progress(0, jobs.len());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                while let Some(&(v, f)) = jobs.get(next.fetch_add(1, Ordering::SeqCst)) {
+                    let run = simulate(v, f, &o);
                     runs.lock().unwrap().push(run);
-                    progress(done.fetch_add(1, Ordering::SeqCst) + 1, total);
+                    progress(done.fetch_add(1, Ordering::SeqCst) + 1, jobs.len());
                 }
-            })
-        })
-        .collect();
-    for h in handles {
-        h.join().expect("sweep worker panicked");
-    }
+            });
+        }
+    });
     eprintln!();
-    let mut runs: Vec<Run> = match Arc::try_unwrap(runs)
-        .ok()
-        .unwrap()
-        .into_inner()
-        .unwrap()
-        .into_iter()
-        .collect()
-    {
+    let mut runs: Vec<Run> = match runs.into_inner().unwrap().into_iter().collect() {
         Ok(runs) => runs,
         Err(e) => {
             eprintln!("sweep: {e}");
@@ -120,8 +139,8 @@ fn main() {
         }
     };
     runs.sort_by(|a, b| {
-        (b.stagger, a.frequency)
-            .partial_cmp(&(a.stagger, b.frequency))
+        (a.variant, a.frequency)
+            .partial_cmp(&(b.variant, b.frequency))
             .unwrap()
     });
     report(&runs, &o);
@@ -142,40 +161,60 @@ fn final_distance(run: &Run) -> f32 {
     run.trajectory.last().map_or(0.0, |p| p.1)
 }
 
-fn report(runs: &[Run], o: &Options) {
+/// Distance against frequency for one variant, in diameters.
+fn curve(runs: &[Run], variant: usize) -> Vec<(f32, f32)> {
     let diameter = Species::aurelia().diameter;
+    runs.iter()
+        .filter(|r| r.variant == variant)
+        .map(|r| (r.frequency, final_distance(r) / diameter))
+        .collect()
+}
+
+fn report(runs: &[Run], o: &Options) {
+    let grid = o.grid.unwrap_or(Species::aurelia().grid_resolution);
     println!(
-        "distance swum in {} s (grid {}), in bell diameters",
-        o.seconds, o.grid
+        "distance swum in {} s (grid {grid}), in bell diameters",
+        o.seconds
     );
-    println!(
-        "{:>8}  {:>10}  {:>10}  {:>7}",
-        "freq Hz", "staggered", "unison", "ratio"
-    );
-    let find = |f: f32, s: f32| runs.iter().find(|r| r.frequency == f && r.stagger == s);
-    for f in FREQUENCIES {
-        let (Some(st), Some(un)) = (find(f, 1.0), find(f, 0.0)) else {
+    let curves: Vec<Vec<(f32, f32)>> = (0..VARIANTS.len()).map(|v| curve(runs, v)).collect();
+    print!("{:>8}", "freq Hz");
+    for v in &VARIANTS {
+        print!("  {:>26}", v.label);
+    }
+    println!();
+    for (k, f) in frequencies().iter().enumerate() {
+        print!("{f:8.1}");
+        for c in &curves {
+            print!("  {:>26.3}", c.get(k).map_or(f32::NAN, |p| p.1));
+        }
+        println!();
+    }
+    for (v, c) in VARIANTS.iter().zip(&curves) {
+        let (Some(peak), Some(low), Some(high)) = (
+            c.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1)),
+            c.first(),
+            c.last(),
+        ) else {
             continue;
         };
-        let (a, b) = (final_distance(st) / diameter, final_distance(un) / diameter);
-        println!("{f:8.2}  {a:10.3}  {b:10.3}  {:7.2}", a / b);
-    }
-    let staggered: Vec<(f32, f32)> = FREQUENCIES
-        .iter()
-        .filter_map(|f| find(*f, 1.0).map(|r| (*f, final_distance(r))))
-        .collect();
-    if let (Some(peak), Some(low), Some(high)) = (
-        staggered.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1)),
-        staggered.first(),
-        staggered.last(),
-    ) {
         println!(
-            "staggered peak at {} Hz: {:.2}x the {} Hz end, {:.2}x the {} Hz end",
+            "{}: peak at {} Hz, {:+.0}% over the {} Hz end, {:+.0}% over the {} Hz end",
+            v.label,
             peak.0,
-            peak.1 / low.1,
+            100.0 * (peak.1 / low.1 - 1.0),
             low.0,
-            peak.1 / high.1,
+            100.0 * (peak.1 / high.1 - 1.0),
             high.0
+        );
+    }
+    let ratio = |f: f32| {
+        let at = |c: &Vec<(f32, f32)>| c.iter().find(|p| (p.0 - f).abs() < 1e-4).map(|p| p.1);
+        Some(at(&curves[0])? / at(&curves[1])?)
+    };
+    if let Some(r) = ratio(0.7) {
+        println!(
+            "staggered over unison at 0.7 Hz: {:+.0}%",
+            100.0 * (r - 1.0)
         );
     }
     let recoveries: u32 = runs.iter().map(|r| r.recoveries).sum();
@@ -186,33 +225,30 @@ fn report(runs: &[Run], o: &Options) {
         return;
     }
     let csv = o.out.join("sweep.csv");
-    let mut text = String::from("frequency_hz,stagger,time_s,distance_m\n");
+    let mut text = String::from("variant,frequency_hz,time_s,distance_m\n");
     for r in runs {
         for (t, d) in &r.trajectory {
-            text += &format!("{},{},{t:.3},{d:.6}\n", r.frequency, r.stagger);
+            text += &format!(
+                "{},{},{t:.3},{d:.6}\n",
+                VARIANTS[r.variant].label, r.frequency
+            );
         }
     }
     match std::fs::write(&csv, text) {
         Ok(()) => println!("wrote {}", csv.display()),
         Err(e) => eprintln!("sweep: cannot write {}: {e}", csv.display()),
     }
-
-    let colors = [[31, 119, 180], [214, 39, 40]];
     let distance = Chart {
         title: format!("Distance in {} s against frequency", o.seconds),
         x_label: "contraction frequency (Hz)".into(),
         y_label: "distance (bell diameters)".into(),
-        series: STAGGERS
+        series: VARIANTS
             .iter()
-            .zip(colors)
-            .map(|((s, label), color)| Series {
-                label: label.to_string(),
-                points: runs
-                    .iter()
-                    .filter(|r| r.stagger == *s)
-                    .map(|r| (r.frequency, final_distance(r) / diameter))
-                    .collect(),
-                color,
+            .zip(&curves)
+            .map(|(v, c)| Series {
+                label: v.label.to_string(),
+                points: c.clone(),
+                color: v.color,
                 markers: true,
             })
             .collect(),
@@ -228,13 +264,15 @@ fn report(runs: &[Run], o: &Options) {
         [200, 30, 60],
         [120, 60, 20],
     ];
+    let diameter = Species::aurelia().diameter;
+    let shown = [0.2, 0.4, 0.6, 0.7, 0.8, 1.0, 1.2, 1.6];
     let trajectories = Chart {
         title: "Trajectories, staggered".into(),
         x_label: "time (s)".into(),
         y_label: "distance (bell diameters)".into(),
         series: runs
             .iter()
-            .filter(|r| r.stagger == 1.0)
+            .filter(|r| r.variant == 0 && shown.iter().any(|f| (f - r.frequency).abs() < 1e-4))
             .zip(palette.iter().cycle())
             .map(|(r, color)| Series {
                 label: format!("{} Hz", r.frequency),

@@ -1,9 +1,9 @@
-//! Every species parameter as a row of the editor: its field, a label, the unit it is
-//! shown in and a slider range that covers real jellyfish with room to experiment.
-//!
-//! Ranges are for dragging; typed values may leave them, and validation then decides.
+//! Every species parameter as a row of the editor: its field, a label and the unit it is
+//! shown in. Each slider spans its field's limit (`species::limits`), shown beside it,
+//! and cannot leave it; limits that join fields (proportions, budgets) are validation's,
+//! shown as an error above the sliders.
 
-use crate::species::{Advection, Kernel, Species};
+use crate::species::{Advection, Kernel, Species, limits};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -21,8 +21,6 @@ pub struct Param {
     pub unit: &'static str,
     /// Shown value = stored value × `scale` (lengths in millimetres).
     pub scale: f64,
-    /// Slider range, in shown units.
-    pub range: RangeInclusive<f64>,
     pub logarithmic: bool,
     pub value: for<'a> fn(&'a mut Species) -> Value<'a>,
 }
@@ -34,17 +32,43 @@ pub struct Section {
 }
 
 macro_rules! param {
-    ($field:ident, $label:literal, $unit:literal, $scale:expr, $range:expr, $log:expr, $kind:ident) => {
+    ($field:ident, $label:literal, $unit:literal, $scale:expr, $log:expr, $kind:ident) => {
         Param {
             field: stringify!($field),
             label: $label,
             unit: $unit,
             scale: $scale,
-            range: $range,
             logarithmic: $log,
             value: |s| Value::$kind(&mut s.$field),
         }
     };
+}
+
+impl Param {
+    /// The field's limit ([`limits::LIMITS`]), in the slider's units: the slider cannot
+    /// leave it.
+    pub fn range(&self) -> RangeInclusive<f64> {
+        let limit = limits::of(self.field).expect("every slider's field has a limit");
+        limit.min * self.scale..=limit.max * self.scale
+    }
+
+    /// The limit as the panel shows it beside the slider, in the slider's units.
+    pub fn range_text(&self) -> String {
+        let range = self.range();
+        let number = |v: f64| {
+            if v != 0.0 && (v.abs() < 1e-2 || v.abs() >= 1e5) {
+                format!("{v:.0e}")
+            } else {
+                format!("{}", (v * 1e4).round() / 1e4)
+            }
+        };
+        format!(
+            "{}–{}{}",
+            number(*range.start()),
+            number(*range.end()),
+            self.unit
+        )
+    }
 }
 
 const MM: f64 = 1e3;
@@ -55,70 +79,70 @@ pub const SECTIONS: &[Section] = &[
     Section {
         title: "Muscles",
         params: &[
-            param!(contraction_frequency, "contraction frequency", " Hz", 1.0, 0.1..=3.0, false, Real),
-            param!(contraction_ratio, "contracted length", "", 1.0, 0.3..=1.0, false, Real),
-            param!(contraction_duty, "contraction duty", "", 1.0, 0.1..=0.8, false, Real),
-            param!(expansion_stagger, "expansion stagger", "", 1.0, 0.0..=1.0, false, Real),
-            param!(muscle_modulus, "muscle modulus", " Pa", 1.0, 1e4..=4e6, true, Real),
-            param!(muscle_cross_section, "muscle cross-section", "", 1.0, 1e-4..=0.1, true, Real),
+            param!(contraction_frequency, "contraction frequency", " Hz", 1.0, false, Real),
+            param!(contraction_ratio, "contracted length", "", 1.0, false, Real),
+            param!(contraction_duty, "contraction duty", "", 1.0, false, Real),
+            param!(expansion_stagger, "expansion stagger", "", 1.0, false, Real),
+            param!(muscle_modulus, "muscle modulus", " Pa", 1.0, true, Real),
+            param!(muscle_cross_section, "muscle cross-section", "", 1.0, true, Real),
         ],
     },
     Section {
         title: "Bell",
         params: &[
-            param!(diameter, "diameter", " mm", MM, 5.0..=200.0, true, Real),
-            param!(height, "height", " mm", MM, 3.0..=200.0, true, Real),
-            param!(thickness, "mesoglea thickness", " mm", MM, 0.5..=30.0, true, Real),
-            param!(margin_thickness_ratio, "margin thickness", "", 1.0, 0.05..=1.0, false, Real),
-            param!(elastic_modulus, "mesoglea stiffness", " Pa", 1.0, 100.0..=2e4, true, Real),
-            param!(angular_stiffness, "bending stiffness", " N·m/rad", 1.0, 1e-5..=1e-1, true, Real),
-            param!(hoop_cross_section, "hoop cross-section", "", 1.0, 1e-4..=0.1, true, Real),
-            param!(mesoglea_resilience, "mesoglea resilience", "", 1.0, 0.05..=1.0, false, Real),
+            param!(diameter, "diameter", " mm", MM, true, Real),
+            param!(height, "height", " mm", MM, true, Real),
+            param!(thickness, "mesoglea thickness", " mm", MM, true, Real),
+            param!(margin_thickness_ratio, "margin thickness", "", 1.0, false, Real),
+            param!(elastic_modulus, "mesoglea stiffness", " Pa", 1.0, true, Real),
+            param!(angular_stiffness, "bending stiffness", " N·m/rad", 1.0, true, Real),
+            param!(hoop_cross_section, "hoop cross-section", "", 1.0, true, Real),
+            param!(mesoglea_resilience, "mesoglea resilience", "", 1.0, false, Real),
         ],
     },
     Section {
         title: "Tentacles",
         params: &[
-            param!(tentacle_count, "tentacles", "", 1.0, 0.0..=256.0, false, Count),
-            param!(tentacle_length, "length", " mm", MM, 0.0..=300.0, false, Real),
-            param!(tentacle_radius, "radius", " mm", MM, 0.05..=3.0, true, Real),
-            param!(tentacle_cross_section, "spring cross-section", "", 1.0, 1e-4..=1.0, true, Real),
+            param!(tentacle_count, "tentacles", "", 1.0, false, Count),
+            param!(tentacle_length, "length", " mm", MM, false, Real),
+            param!(tentacle_radius, "radius", " mm", MM, true, Real),
+            param!(tentacle_cross_section, "spring cross-section", "", 1.0, true, Real),
         ],
     },
     Section {
         title: "Surface variation",
         params: &[
-            param!(structural_scale, "structural scale", "", 1.0, 0.0..=1.0, false, Real),
-            param!(structural_frequency, "structural lobes", "", 1.0, 0.0..=24.0, false, Real),
-            param!(compression_scale, "compression scale", "", 1.0, 0.0..=0.5, false, Real),
-            param!(compression_frequency, "compression ripples", "", 1.0, 0.0..=24.0, false, Real),
-            param!(unstructured_scale, "noise scale", "", 1.0, 0.0..=4.0, false, Real),
-            param!(noise_frequency_lat, "noise frequency, latitude", "", 1.0, 0.0..=8.0, false, Real),
-            param!(noise_frequency_lon, "noise frequency, longitude", "", 1.0, 0.0..=24.0, false, Real),
-            param!(noise_frequency_time, "noise frequency, time", " /s", 1.0, 0.0..=0.2, false, Real),
+            param!(structural_scale, "structural scale", "", 1.0, false, Real),
+            param!(structural_frequency, "structural lobes", "", 1.0, false, Real),
+            param!(compression_scale, "compression scale", "", 1.0, false, Real),
+            param!(compression_frequency, "compression ripples", "", 1.0, false, Real),
+            param!(unstructured_scale, "noise scale", "", 1.0, false, Real),
+            param!(noise_frequency_lat, "noise frequency, latitude", "", 1.0, false, Real),
+            param!(noise_frequency_lon, "noise frequency, longitude", "", 1.0, false, Real),
+            param!(noise_frequency_time, "noise frequency, time", " /s", 1.0, false, Real),
         ],
     },
     Section {
         title: "Water",
         params: &[
-            param!(grid_resolution, "grid cells per side", "", 1.0, 32.0..=200.0, false, Count),
-            param!(domain_diameters, "domain", " diameters", 1.0, 4.0..=20.0, false, Real),
-            param!(boundary_width, "boundary width", " diameters", 1.0, 0.1..=1.0, false, Real),
-            param!(viscosity, "viscosity", " Pa·s", 1.0, 1e-4..=1e-1, true, Real),
-            param!(density, "density", " kg/m³", 1.0, 900.0..=1200.0, false, Real),
+            param!(grid_resolution, "grid cells per side", "", 1.0, false, Count),
+            param!(domain_diameters, "domain", " diameters", 1.0, false, Real),
+            param!(boundary_width, "boundary width", " diameters", 1.0, false, Real),
+            param!(viscosity, "viscosity", " Pa·s", 1.0, true, Real),
+            param!(density, "density", " kg/m³", 1.0, false, Real),
         ],
     },
     Section {
         title: "Mesh",
         params: &[
-            param!(mesh_rings, "rings", "", 1.0, 4.0..=64.0, false, Count),
-            param!(mesh_segments, "segments", "", 1.0, 8.0..=128.0, false, Count),
-            param!(tentacle_sides, "tentacle sides", "", 1.0, 3.0..=12.0, false, Count),
+            param!(mesh_rings, "rings", "", 1.0, false, Count),
+            param!(mesh_segments, "segments", "", 1.0, false, Count),
+            param!(tentacle_sides, "tentacle sides", "", 1.0, false, Count),
         ],
     },
     Section {
         title: "Looks",
-        params: &[param!(glow, "glow", "", 1.0, 0.0..=4.0, false, Real)],
+        params: &[param!(glow, "glow", "", 1.0, false, Real)],
     },
 ];
 
@@ -139,14 +163,17 @@ fn slider(ui: &mut egui::Ui, param: &Param, species: &mut Species) -> bool {
         Value::Count(v) => *v as f64,
     };
     ui.label(param.label).on_hover_text(param.field);
-    let mut widget = egui::Slider::new(&mut shown, param.range.clone())
+    let mut widget = egui::Slider::new(&mut shown, param.range())
         .logarithmic(param.logarithmic)
-        .clamping(egui::SliderClamping::Never)
+        .clamping(egui::SliderClamping::Always)
         .suffix(param.unit);
     if matches!((param.value)(species), Value::Count(_)) {
         widget = widget.integer();
     }
+    let limit = limits::of(param.field).map_or("", |l| l.why);
     let changed = ui.add(widget).changed();
+    ui.label(egui::RichText::new(param.range_text()).weak().small())
+        .on_hover_text(limit);
     ui.end_row();
     if changed {
         match (param.value)(species) {
@@ -165,7 +192,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
             .default_open(section.title == "Muscles")
             .show(ui, |ui| {
                 egui::Grid::new(section.title)
-                    .num_columns(2)
+                    .num_columns(3)
                     .striped(true)
                     .show(ui, |ui| {
                         for param in section.params {

@@ -31,7 +31,12 @@ impl Resolution {
             rings,
             segments: species.mesh_segments.clamp(3, 512) as usize,
             tentacles: TentacleLayout {
-                count: species.tentacle_count.min(256) as usize,
+                // No length, no tubes (rather than a ring of zero-length ones).
+                count: if species.tentacle_length > 0.0 {
+                    species.tentacle_count.min(256) as usize
+                } else {
+                    0
+                },
                 sides: species.tentacle_sides.clamp(3, 32) as usize,
                 // As many rings along a tentacle as on the bell: fine enough to bend smoothly.
                 points: rings + 1,

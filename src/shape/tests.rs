@@ -496,3 +496,31 @@ fn grid_normals_match_area_weighted_normals() {
         assert!(mean > 0.999, "mean cosine {mean}");
     }
 }
+
+#[test]
+fn the_vertex_budget_counts_what_the_mesh_builds() {
+    use crate::species::limits::mesh_vertices;
+    for (rings, segments, count, sides, length) in [
+        (24, 48, 48, 5, 0.03),
+        (2, 3, 0, 3, 0.03),
+        (64, 128, 256, 12, 0.05),
+        (24, 48, 16, 5, 0.0),
+    ] {
+        let sp = Species {
+            mesh_rings: rings,
+            mesh_segments: segments,
+            tentacle_count: count,
+            tentacle_sides: sides,
+            tentacle_length: length,
+            ..Species::aurelia()
+        };
+        let rest = SliceOutline::rest(&sp, 25, if length > 0.0 { 10 } else { 0 });
+        let mesh = build(&rest.view(), &sp, 1, 0.0);
+        let built = mesh.umbrella.vertex_count() + mesh.tentacles.vertex_count();
+        assert_eq!(
+            built,
+            mesh_vertices(&sp),
+            "{rings} rings, {count} tentacles"
+        );
+    }
+}

@@ -56,6 +56,9 @@ pub struct Fluid {
 
 pub use crate::species::{Advection, Kernel};
 
+/// Most explicit diffusion sweeps in one step (see [`Fluid::diffuse`]).
+pub const MAX_DIFFUSION_SWEEPS: usize = 32;
+
 /// Which staggered component a sample refers to.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Component {
@@ -234,14 +237,17 @@ impl Fluid {
     }
 
     /// Viscosity, explicit, sub-stepped where `ν·dt/h²` would be unstable. For sea water at
-    /// these scales `ν·dt/h²` is about 1e-3, so this is one cheap sweep.
+    /// these scales `ν·dt/h²` is about 1e-3, so this is one cheap sweep. At most
+    /// [`MAX_DIFFUSION_SWEEPS`] sweeps: beyond, the viscosity is capped at what they
+    /// resolve (`32 · 0.2 · h²/dt`; Re ≈ 0.3 for the default species, where nothing swims
+    /// anyway), so a species as viscous as honey costs a bounded step instead of hanging.
     pub fn diffuse(&mut self, dt: f32) {
         let alpha = self.nu * dt / (self.h * self.h);
-        if alpha <= 0.0 {
+        if alpha.is_nan() || alpha <= 0.0 {
             return;
         }
-        let substeps = (alpha / 0.2).ceil().max(1.0) as usize;
-        let a = alpha / substeps as f32;
+        let substeps = ((alpha / 0.2).ceil() as usize).clamp(1, MAX_DIFFUSION_SWEEPS);
+        let a = (alpha / substeps as f32).min(0.2);
         let n = self.n;
         for _ in 0..substeps {
             laplacian_step(&self.u, &mut self.scratch_u, n + 1, n, a);

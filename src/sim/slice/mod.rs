@@ -15,16 +15,6 @@ use super::muscle::MuscleDrive;
 use crate::species::{Species, SpeciesError};
 use frame::ComovingFrame;
 use glam::Vec2;
-/// Courant number the step is chosen for: how many cells the water expected in a stroke
-/// may cross per step. Advection alone is stable beyond 1, but at 1 (44 ms steps) the
-/// semi-implicit bell crumpled within a few strokes; at 0.5 it strokes cleanly.
-const COURANT: f32 = 0.5;
-/// At least this many steps per contraction cycle, so the muscle drive is resolved.
-const MIN_STEPS_PER_CYCLE: u32 = 32;
-/// The fastest water of a stroke, in units of the margin's mean inward speed
-/// (`(1 − ratio)·D/2` in `duty·T`): the jet leaves the aperture faster than the margin
-/// closes. Measured: see [`SliceSim::steps_per_cycle`].
-const JET_SPEED_FACTOR: f32 = 4.0;
 /// Depth of the absorbing layer at the wake end, in bell diameters.
 const SPONGE_DIAMETERS: f32 = 1.0;
 /// Damping rate at the wake end, per contraction cycle.
@@ -131,19 +121,9 @@ impl SliceSim {
         self.last_substeps = (self.substeps - before) as usize;
     }
 
-    /// Fixed steps per contraction cycle for `species`: enough to resolve the muscle drive
-    /// (at least 32) and to keep the water expected in a stroke under half a cell per step.
+    /// Fixed steps per contraction cycle for `species` ([`Species::steps_per_cycle`]).
     pub fn steps_per_cycle(species: &Species) -> u32 {
-        let margin_speed = (1.0 - species.contraction_ratio) * 0.5 * species.diameter
-            / (species.contraction_duty * species.period());
-        let expected = JET_SPEED_FACTOR * margin_speed;
-        let courant = species.period() * expected / (COURANT * species.cell_size());
-        let steps = courant.ceil().max(MIN_STEPS_PER_CYCLE as f32);
-        if steps.is_finite() {
-            steps.min(1e6) as u32
-        } else {
-            MIN_STEPS_PER_CYCLE
-        }
+        species.steps_per_cycle()
     }
 
     /// Where the aperture's centre sits at rest, in domain coordinates: on the axis, with
@@ -166,7 +146,7 @@ impl SliceSim {
 
     /// The slice's fixed step for `species`, s: a whole fraction of the contraction period.
     pub fn step_length(species: &Species) -> f32 {
-        species.period() / Self::steps_per_cycle(species) as f32
+        species.step_length()
     }
 
     fn refresh_view(&mut self) {

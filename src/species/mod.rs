@@ -4,6 +4,8 @@
 //! read in SI units as DESIGN.md section 3 explains. Everything else a simulation or a
 //! renderer needs lives here too, so that one RON file describes one species.
 
+pub mod limits;
+
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -240,121 +242,36 @@ impl Species {
             .map_err(|e| SpeciesError::Parse(e.to_string()))
     }
 
-    /// Checks every parameter; the error names the first bad field and why.
+    /// Checks every parameter against [`limits::LIMITS`] and the limits that join fields
+    /// (proportions, the mesh's vertex budget, the slice's cost); the error names the
+    /// first bad field, its allowed range and why.
     pub fn validate(&self) -> Result<(), SpeciesError> {
-        let c = Checker;
-        let g = self.grid_resolution;
-        if !(16..=512).contains(&g) {
-            return Err(SpeciesError::invalid(
-                "grid_resolution",
-                format!("must be in 16..=512, got {g}"),
-            ));
+        limits::validate(self)
+    }
+
+    /// Fixed simulation steps per contraction cycle: enough to resolve the muscle drive
+    /// (at least 32) and to keep the water a stroke is expected to move under half a cell
+    /// per step (Courant 0.5 at four times the margin's mean inward speed: the jet leaves
+    /// the aperture faster than the margin closes; measured up to three times).
+    pub fn steps_per_cycle(&self) -> u32 {
+        const MIN_STEPS_PER_CYCLE: f32 = 32.0;
+        const COURANT: f32 = 0.5;
+        const JET_SPEED_FACTOR: f32 = 4.0;
+        let margin_speed = (1.0 - self.contraction_ratio) * 0.5 * self.diameter
+            / (self.contraction_duty * self.period());
+        let expected = JET_SPEED_FACTOR * margin_speed;
+        let courant = self.period() * expected / (COURANT * self.cell_size());
+        let steps = courant.ceil().max(MIN_STEPS_PER_CYCLE);
+        if steps.is_finite() {
+            steps.min(1e6) as u32
+        } else {
+            MIN_STEPS_PER_CYCLE as u32
         }
-        c.positive("viscosity", self.viscosity, true)?;
-        c.positive("density", self.density, false)?;
-        c.range("domain_diameters", self.domain_diameters, 3.0, 40.0)?;
-        c.positive("diameter", self.diameter, false)?;
-        c.positive("height", self.height, false)?;
-        c.positive("thickness", self.thickness, false)?;
-        if self.height > 2.0 * self.diameter {
-            return Err(SpeciesError::invalid(
-                "height",
-                format!(
-                    "must be at most twice the diameter ({} m), got {} m",
-                    2.0 * self.diameter,
-                    self.height
-                ),
-            ));
-        }
-        if self.thickness > 0.5 * self.diameter.min(2.0 * self.height) {
-            return Err(SpeciesError::invalid(
-                "thickness",
-                format!("{} m is too thick for a bell this size", self.thickness),
-            ));
-        }
-        c.range(
-            "margin_thickness_ratio",
-            self.margin_thickness_ratio,
-            0.05,
-            1.0,
-        )?;
-        c.positive("elastic_modulus", self.elastic_modulus, false)?;
-        c.positive("angular_stiffness", self.angular_stiffness, true)?;
-        c.positive("muscle_modulus", self.muscle_modulus, false)?;
-        c.range("muscle_cross_section", self.muscle_cross_section, 1e-6, 1.0)?;
-        c.range("hoop_cross_section", self.hoop_cross_section, 1e-6, 1.0)?;
-        c.positive("contraction_frequency", self.contraction_frequency, false)?;
-        c.range(
-            "contraction_frequency",
-            self.contraction_frequency,
-            0.0,
-            10.0,
-        )?;
-        c.range("contraction_ratio", self.contraction_ratio, 0.2, 1.0)?;
-        c.range("contraction_duty", self.contraction_duty, 0.05, 0.9)?;
-        c.range("expansion_stagger", self.expansion_stagger, 0.0, 1.0)?;
-        if self.tentacle_count > 256 {
-            return Err(SpeciesError::invalid(
-                "tentacle_count",
-                format!("must be at most 256, got {}", self.tentacle_count),
-            ));
-        }
-        c.positive("tentacle_length", self.tentacle_length, true)?;
-        if self.tentacle_length > 20.0 * self.diameter {
-            return Err(SpeciesError::invalid(
-                "tentacle_length",
-                "must be at most 20 bell diameters".to_string(),
-            ));
-        }
-        c.range(
-            "tentacle_cross_section",
-            self.tentacle_cross_section,
-            1e-4,
-            1.0,
-        )?;
-        c.positive("tentacle_radius", self.tentacle_radius, false)?;
-        c.positive("structural_scale", self.structural_scale, true)?;
-        c.positive("structural_frequency", self.structural_frequency, true)?;
-        c.positive("compression_scale", self.compression_scale, true)?;
-        c.positive("compression_frequency", self.compression_frequency, true)?;
-        c.positive("unstructured_scale", self.unstructured_scale, true)?;
-        c.positive("noise_frequency_lat", self.noise_frequency_lat, true)?;
-        c.positive("noise_frequency_lon", self.noise_frequency_lon, true)?;
-        c.positive("noise_frequency_time", self.noise_frequency_time, true)?;
-        for (field, value, lo, hi) in [
-            ("mesh_rings", self.mesh_rings, 2, 256),
-            ("mesh_segments", self.mesh_segments, 3, 512),
-            ("tentacle_sides", self.tentacle_sides, 3, 32),
-        ] {
-            if !(lo..=hi).contains(&value) {
-                return Err(SpeciesError::invalid(
-                    field,
-                    format!("must be in {lo}..={hi}, got {value}"),
-                ));
-            }
-        }
-        for (i, v) in self.bell_color.iter().enumerate() {
-            c.range(
-                [
-                    "bell_color[0]",
-                    "bell_color[1]",
-                    "bell_color[2]",
-                    "bell_color[3]",
-                ][i],
-                *v,
-                0.0,
-                1.0,
-            )?;
-        }
-        for (i, v) in self.glow_color.iter().enumerate() {
-            c.positive(
-                ["glow_color[0]", "glow_color[1]", "glow_color[2]"][i],
-                *v,
-                true,
-            )?;
-        }
-        c.positive("glow", self.glow, true)?;
-        Ok(())
+    }
+
+    /// The fixed simulation step, s: a whole fraction of the contraction period.
+    pub fn step_length(&self) -> f32 {
+        self.period() / self.steps_per_cycle() as f32
     }
 }
 
@@ -431,48 +348,6 @@ impl SpeciesError {
             Self::Invalid { field, .. } => Some(field),
             Self::Parse(_) => None,
         }
-    }
-}
-
-/// Small helpers so each check reads as one line.
-struct Checker;
-
-impl Checker {
-    fn finite(&self, field: &'static str, v: f32) -> Result<(), SpeciesError> {
-        if v.is_finite() {
-            Ok(())
-        } else {
-            Err(SpeciesError::invalid(
-                field,
-                format!("must be finite, got {v}"),
-            ))
-        }
-    }
-
-    fn positive(&self, field: &'static str, v: f32, zero_ok: bool) -> Result<(), SpeciesError> {
-        self.finite(field, v)?;
-        match (zero_ok, v) {
-            (true, v) if v < 0.0 => Err(SpeciesError::invalid(
-                field,
-                format!("must not be negative, got {v}"),
-            )),
-            (false, v) if v <= 0.0 => Err(SpeciesError::invalid(
-                field,
-                format!("must be greater than zero, got {v}"),
-            )),
-            _ => Ok(()),
-        }
-    }
-
-    fn range(&self, field: &'static str, v: f32, lo: f32, hi: f32) -> Result<(), SpeciesError> {
-        self.finite(field, v)?;
-        if v < lo || v > hi {
-            return Err(SpeciesError::invalid(
-                field,
-                format!("must be in [{lo}, {hi}], got {v}"),
-            ));
-        }
-        Ok(())
     }
 }
 

@@ -1,0 +1,260 @@
+//! The limits table, fuzzed: random species with every field at once, extremes included.
+//! Inside the limits a species runs — no panic, finite, its mesh within the vertex budget;
+//! outside, it is an error naming a field. The short run is part of `cargo test`; the long
+//! one also checks the time a second of 60 Hz frames takes:
+//! `cargo test --release --no-default-features --test limits -- --ignored --nocapture`.
+
+use bevy_jellyfish::shape::{JellyMesh, build_into};
+use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
+use bevy_jellyfish::species::{Advection, Kernel};
+use bevy_jellyfish::{SliceSim, Species};
+use std::time::{Duration, Instant};
+
+/// A small deterministic generator (xorshift), so a failure can be replayed by its seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A value inside the limit: often an end, otherwise uniform (log-uniform over wide
+/// ranges of positive values).
+fn inside(rng: &mut Rng, l: &Limit) -> f64 {
+    match rng.next() % 5 {
+        0 => l.min,
+        1 => l.max,
+        _ if l.min > 0.0 && l.max / l.min > 100.0 => {
+            (l.min.ln() + rng.unit() * (l.max / l.min).ln()).exp()
+        }
+        _ => l.min + rng.unit() * (l.max - l.min),
+    }
+}
+
+/// A value outside the limit.
+fn outside(rng: &mut Rng, l: &Limit) -> f64 {
+    let span = (l.max - l.min).max(1e-9);
+    match rng.next() % 5 {
+        0 => f64::NAN,
+        1 => f64::INFINITY,
+        2 => l.max + span * (0.01 + rng.unit()),
+        3 => l.max * 1e20 + 1.0,
+        _ => l.min - span * (0.01 + rng.unit()) - 1e-6,
+    }
+}
+
+/// Writes `value` into the field the limit names (counts round to the nearest whole).
+fn set(s: &mut Species, field: &str, value: f64) {
+    let count = |v: f64| {
+        if v.is_nan() {
+            u32::MAX
+        } else {
+            v.round().clamp(0.0, u32::MAX as f64) as u32
+        }
+    };
+    let v = value as f32;
+    match field {
+        "grid_resolution" => s.grid_resolution = count(value),
+        "viscosity" => s.viscosity = v,
+        "density" => s.density = v,
+        "domain_diameters" => s.domain_diameters = v,
+        "boundary_width" => s.boundary_width = v,
+        "diameter" => s.diameter = v,
+        "height" => s.height = v,
+        "thickness" => s.thickness = v,
+        "margin_thickness_ratio" => s.margin_thickness_ratio = v,
+        "elastic_modulus" => s.elastic_modulus = v,
+        "angular_stiffness" => s.angular_stiffness = v,
+        "mesoglea_resilience" => s.mesoglea_resilience = v,
+        "muscle_modulus" => s.muscle_modulus = v,
+        "muscle_cross_section" => s.muscle_cross_section = v,
+        "hoop_cross_section" => s.hoop_cross_section = v,
+        "contraction_frequency" => s.contraction_frequency = v,
+        "contraction_ratio" => s.contraction_ratio = v,
+        "contraction_duty" => s.contraction_duty = v,
+        "expansion_stagger" => s.expansion_stagger = v,
+        "tentacle_count" => s.tentacle_count = count(value),
+        "tentacle_length" => s.tentacle_length = v,
+        "tentacle_cross_section" => s.tentacle_cross_section = v,
+        "tentacle_radius" => s.tentacle_radius = v,
+        "structural_scale" => s.structural_scale = v,
+        "structural_frequency" => s.structural_frequency = v,
+        "compression_scale" => s.compression_scale = v,
+        "compression_frequency" => s.compression_frequency = v,
+        "unstructured_scale" => s.unstructured_scale = v,
+        "noise_frequency_lat" => s.noise_frequency_lat = v,
+        "noise_frequency_lon" => s.noise_frequency_lon = v,
+        "noise_frequency_time" => s.noise_frequency_time = v,
+        "mesh_rings" => s.mesh_rings = count(value),
+        "mesh_segments" => s.mesh_segments = count(value),
+        "tentacle_sides" => s.tentacle_sides = count(value),
+        "bell_color[0]" => s.bell_color[0] = v,
+        "bell_color[1]" => s.bell_color[1] = v,
+        "bell_color[2]" => s.bell_color[2] = v,
+        "bell_color[3]" => s.bell_color[3] = v,
+        "glow_color[0]" => s.glow_color[0] = v,
+        "glow_color[1]" => s.glow_color[1] = v,
+        "glow_color[2]" => s.glow_color[2] = v,
+        "glow" => s.glow = v,
+        other => panic!("the fuzzer does not know the field {other}: add it"),
+    }
+}
+
+/// A species with every field inside its limit (`bad` = None) or one field outside.
+fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
+    let mut s = Species::aurelia();
+    for (i, l) in LIMITS.iter().enumerate() {
+        let value = if bad == Some(i) {
+            outside(rng, l)
+        } else {
+            inside(rng, l)
+        };
+        set(&mut s, l.field, value);
+    }
+    s.advection = Advection::ALL[(rng.next() % Advection::ALL.len() as u64) as usize];
+    s.kernel = Kernel::ALL[(rng.next() % Kernel::ALL.len() as u64) as usize];
+    s.structural_abs = rng.next().is_multiple_of(2);
+    s
+}
+
+/// Pulls the fields that limits join into their joint ranges: proportions, then the
+/// vertex budget, then the cost budget, each by the least it takes.
+fn within_joint_limits(s: &mut Species) {
+    use bevy_jellyfish::species::limits::{MAX_COST_PER_SECOND, mesh_vertices, simulation_cost};
+    s.height = s.height.clamp(0.1 * s.diameter, 2.0 * s.diameter);
+    s.thickness = s.thickness.min(0.5 * s.diameter.min(2.0 * s.height));
+    s.tentacle_length = s.tentacle_length.min(10.0 * s.diameter);
+    s.tentacle_radius = s.tentacle_radius.min(0.05 * s.diameter);
+    while mesh_vertices(s) > MAX_MESH_VERTICES {
+        if s.tentacle_count > 8 {
+            s.tentacle_count /= 2;
+        } else {
+            s.mesh_segments = (s.mesh_segments / 2).max(3);
+            s.mesh_rings = (s.mesh_rings / 2).max(2);
+        }
+    }
+    while simulation_cost(s) > MAX_COST_PER_SECOND {
+        if s.grid_resolution > 24 {
+            s.grid_resolution = (s.grid_resolution * 3 / 4).max(24);
+        } else {
+            s.contraction_frequency *= 0.75;
+        }
+    }
+}
+
+/// Runs a valid species for `frames` 60 Hz frames, meshing each; returns the wall time.
+fn run(species: &Species, frames: usize, seed: u64) -> Duration {
+    let start = Instant::now();
+    let mut sim = SliceSim::new(species).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+    let mut mesh = JellyMesh::new();
+    for frame in 0..frames {
+        sim.advance(1.0 / 60.0);
+        assert!(
+            sim.bell_points().iter().all(|p| p.is_finite()),
+            "seed {seed}, frame {frame}: the bell is not finite"
+        );
+        assert!(sim.fluid_speed_max().is_finite(), "seed {seed}: the water");
+        build_into(&mut mesh, &sim.view(), species, 1, sim.time())
+            .unwrap_or_else(|e| panic!("seed {seed}, frame {frame}: {e}"));
+        let finite = |b: &[[f32; 3]]| b.iter().flatten().all(|x| x.is_finite());
+        assert!(
+            finite(&mesh.umbrella.positions) && finite(&mesh.tentacles.positions),
+            "seed {seed}, frame {frame}: the mesh is not finite"
+        );
+        let vertices = mesh.umbrella.vertex_count() + mesh.tentacles.vertex_count();
+        assert!(
+            vertices <= MAX_MESH_VERTICES,
+            "seed {seed}: {vertices} vertices"
+        );
+    }
+    start.elapsed()
+}
+
+/// `count` species inside the limits and `count` with one field outside; returns how many
+/// validated and the slowest second of frames (scaled from `frames`).
+fn fuzz(count: u64, frames: usize) -> (usize, Duration) {
+    let (mut valid, mut slowest) = (0, Duration::ZERO);
+    for seed in 1..=count {
+        let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+        // Inside every range: either it runs, or a limit joining fields names one.
+        let mut s = random_species(&mut rng, None);
+        if !rng.next().is_multiple_of(4) {
+            within_joint_limits(&mut s);
+        }
+        match s.validate() {
+            Ok(()) => {
+                valid += 1;
+                let took = run(&s, frames, seed).mul_f64(60.0 / frames as f64);
+                if took > slowest {
+                    use bevy_jellyfish::species::limits::{mesh_vertices, simulation_cost};
+                    println!(
+                        "seed {seed}: {:.2} s for a second (estimated slice cost {:.2} s, \
+                         {} steps per cycle at {} Hz, grid {}, viscosity {}, {} vertices, \
+                         {} steps taken)",
+                        took.as_secs_f64(),
+                        simulation_cost(&s),
+                        s.steps_per_cycle(),
+                        s.contraction_frequency,
+                        s.grid_resolution,
+                        s.viscosity,
+                        mesh_vertices(&s),
+                        (s.steps_per_cycle() as f32 * s.contraction_frequency) as u32,
+                    );
+                }
+                slowest = slowest.max(took);
+            }
+            Err(e) => {
+                let field = e.field().unwrap_or_else(|| panic!("seed {seed}: {e}"));
+                assert!(e.to_string().contains(field), "seed {seed}: {e}");
+            }
+        }
+        // One field outside its range: an error naming that field (or another out of
+        // range first: the table is checked in order) and the range.
+        let bad = (rng.next() % LIMITS.len() as u64) as usize;
+        let s = random_species(&mut rng, Some(bad));
+        let e = s.validate().expect_err(&format!(
+            "seed {seed}: {} outside passed",
+            LIMITS[bad].field
+        ));
+        let field = e.field().expect("an invalid field");
+        assert!(
+            LIMITS.iter().any(|l| l.field == field),
+            "seed {seed}: {field}"
+        );
+        assert!(
+            SliceSim::new(&s).is_err(),
+            "seed {seed}: the slice refuses it too"
+        );
+    }
+    (valid, slowest)
+}
+
+#[test]
+fn random_species_run_inside_the_limits_and_are_refused_outside() {
+    let (valid, _) = fuzz(8, 6);
+    assert!(
+        valid >= 1,
+        "no random species validated: the fuzz tests nothing"
+    );
+}
+
+#[test]
+#[ignore = "long: 200 random species, a second of frames each"]
+fn any_species_inside_the_limits_runs_a_second_within_two() {
+    let (valid, slowest) = fuzz(200, 60);
+    println!(
+        "{valid} of 200 random species inside the ranges validated; the slowest second of \
+         60 Hz frames (slice and mesh, one core) took {:.2} s",
+        slowest.as_secs_f64()
+    );
+    assert!(valid >= 20, "{valid} validated");
+    assert!(slowest <= Duration::from_secs(2), "{slowest:?}");
+}
