@@ -624,3 +624,106 @@ fn cost_per_jellyfish() {
         per(mesh)
     );
 }
+
+/// A camera at the origin looking down −z, with the frustum the renderer would compute.
+fn spawn_camera(app: &mut App) {
+    use bevy::camera::primitives::Frustum;
+    let transform = Transform::default();
+    let projection = Projection::Perspective(PerspectiveProjection::default());
+    let frustum: Frustum = projection.compute_frustum(&GlobalTransform::from(transform));
+    app.world_mut()
+        .spawn((Camera3d::default(), projection, transform, frustum));
+}
+
+#[test]
+fn jellyfish_out_of_view_are_not_meshed_but_keep_swimming() {
+    use bevy::camera::primitives::Aabb;
+    use bevy::camera::visibility::NoAutoAabb;
+    let mut app = app();
+    spawn_camera(&mut app);
+    let h = add_species(&mut app, species());
+    let mut spawn = |at: Vec3| {
+        app.world_mut()
+            .spawn((
+                Jellyfish::new(h.clone()).with_phase(0.2),
+                Transform::from_translation(at).with_scale(Vec3::splat(10.0)),
+            ))
+            .id()
+    };
+    let (ahead, behind) = (
+        spawn(Vec3::new(0.0, 0.0, -3.0)),
+        spawn(Vec3::new(0.0, 0.0, 3.0)),
+    );
+    run(&mut app, 10);
+    let meshes = |app: &App, e| app.world().get::<JellyfishMeshes>(e).unwrap().seen();
+    assert!(meshes(&app, ahead), "in view: meshed");
+    assert!(!meshes(&app, behind), "behind the camera: not meshed");
+    assert!(
+        app.world()
+            .get::<JellyfishMeshes>(behind)
+            .unwrap()
+            .umbrella
+            .is_none(),
+        "never meshed while out of view"
+    );
+    let time = slice(&app, behind).sim().unwrap().time();
+    run(&mut app, 10);
+    assert!(
+        slice(&app, behind).sim().unwrap().time() > time,
+        "its slice runs on"
+    );
+    // Bounds come from the slice, not from a scan of the vertices.
+    assert!(app.world().get::<NoAutoAabb>(ahead).is_some());
+    let before = *app.world().get::<Aabb>(ahead).unwrap();
+    run(&mut app, 20);
+    let after = *app.world().get::<Aabb>(ahead).unwrap();
+    assert_ne!(before, after, "the bounds follow the stroke");
+    let positions = umbrella_positions(&app, ahead);
+    let (lo, hi) = (after.min(), after.max());
+    for p in positions {
+        let p = Vec3::from_array(p);
+        assert!(
+            p.cmpge(Vec3::from(lo) - 1e-5).all() && p.cmple(Vec3::from(hi) + 1e-5).all(),
+            "{p} outside {after:?}"
+        );
+    }
+    // Turned to face the camera, it is meshed the next frame.
+    app.world_mut()
+        .get_mut::<Transform>(behind)
+        .unwrap()
+        .translation
+        .z = -3.0;
+    run(&mut app, 2);
+    assert!(meshes(&app, behind));
+    assert!(
+        app.world()
+            .get::<JellyfishMeshes>(behind)
+            .unwrap()
+            .umbrella
+            .is_some()
+    );
+}
+
+#[test]
+fn a_large_school_starts_over_a_few_frames() {
+    use bevy_jellyfish::plugin::NEW_SLICES_PER_FRAME;
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let count = 2 * NEW_SLICES_PER_FRAME + 5;
+    for i in 0..count {
+        app.world_mut().spawn((
+            Jellyfish::new(h.clone()),
+            Transform::from_xyz(i as f32, 0.0, 0.0),
+        ));
+    }
+    let started = |app: &mut App| {
+        let mut q = app.world_mut().query::<&JellyfishSlice>();
+        q.iter(app.world()).filter(|s| s.sim().is_some()).count()
+    };
+    app.update();
+    assert_eq!(started(&mut app), NEW_SLICES_PER_FRAME, "one frame's worth");
+    app.update();
+    assert_eq!(started(&mut app), 2 * NEW_SLICES_PER_FRAME);
+    app.update();
+    assert_eq!(started(&mut app), count, "all of them by the third frame");
+}

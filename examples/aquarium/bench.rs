@@ -2,13 +2,14 @@
 //! no renderer, at a fixed frame rate (60 by default). It prints what a frame costs.
 
 use crate::school::School;
-use bevy::asset::AssetPlugin;
+use bevy::asset::{AssetPlugin, LoadState};
+use bevy::camera::primitives::Frustum;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::plugin::JellyfishSlice;
-use bevy_jellyfish::{JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
+use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice};
+use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
 /// How long slices may take to start before the bench gives up, s.
@@ -37,6 +38,7 @@ pub fn run(
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
         1.0 / fps,
     )));
+    spawn_camera(&mut app);
     app.finish();
     app.cleanup();
     // Load the species and build every slice.
@@ -46,6 +48,12 @@ pub fn run(
     while count(&app) < expected {
         app.update();
         warm_up_frames += 1;
+        if let Some(error) = load_failure(&mut app) {
+            return Err(format!(
+                "{error}; run it from the repository (`cargo run --release --example \
+                 aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder holding assets/"
+            ));
+        }
         if start.elapsed() > READY_TIMEOUT {
             return Err(format!(
                 "only {} of {expected} jellyfish started in {} s: do the species files in \
@@ -98,8 +106,48 @@ pub fn run(
     );
     // Every jellyfish runs its full slice until levels of detail exist.
     println!("tiers: near {}, mid 0, far 0", count(&app));
+    let (seen, all) = seen(&mut app);
+    println!("in view: {seen} of {all} meshed in the last frame");
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
     Ok(())
+}
+
+/// A camera where the windowed app's starts, 16:9, with its frustum (no renderer here to
+/// compute it), so the plugin culls as it would on screen.
+fn spawn_camera(app: &mut App) {
+    let transform = crate::camera::home().transform();
+    let projection = Projection::Perspective(PerspectiveProjection {
+        aspect_ratio: 16.0 / 9.0,
+        ..default()
+    });
+    let frustum: Frustum = projection.compute_frustum(&GlobalTransform::from(transform));
+    app.world_mut()
+        .spawn((Camera3d::default(), projection, transform, frustum));
+}
+
+/// Why a jellyfish's species failed to load, if one did.
+fn load_failure(app: &mut App) -> Option<String> {
+    let mut jellyfish = app.world_mut().query::<&Jellyfish>();
+    let server = app.world().resource::<AssetServer>();
+    jellyfish
+        .iter(app.world())
+        .find_map(|j| match server.get_load_state(&j.species) {
+            Some(LoadState::Failed(error)) => Some(format!("a species did not load: {error}")),
+            _ => None,
+        })
+}
+
+/// How many jellyfish the last frame meshed, of all with a slice.
+fn seen(app: &mut App) -> (usize, usize) {
+    let mut q = app
+        .world_mut()
+        .query::<(&JellyfishSlice, &JellyfishMeshes)>();
+    let all: Vec<bool> = q
+        .iter(app.world())
+        .filter(|(s, _)| s.sim().is_some())
+        .map(|(_, m)| m.seen())
+        .collect();
+    (all.iter().filter(|s| **s).count(), all.len())
 }
 
 /// The latest value of a diagnostic, 0 before the first.

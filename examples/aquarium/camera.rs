@@ -22,7 +22,7 @@ pub struct Orbit {
 }
 
 impl Orbit {
-    fn transform(&self) -> Transform {
+    pub fn transform(&self) -> Transform {
         let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
         Transform::from_translation(self.target + rotation * Vec3::Z * self.distance)
             .looking_at(self.target, Vec3::Y)
@@ -45,13 +45,18 @@ fn pointer_over_ui() -> bool {
     false
 }
 
-fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {
-    let orbit = Orbit {
+/// Where the camera starts: looking at the middle of the tank from the front.
+pub fn home() -> Orbit {
+    Orbit {
         target: Vec3::new(0.0, 0.45 * SURFACE, 0.0),
         yaw: 0.0,
         pitch: 0.02,
         distance: 15.0,
-    };
+    }
+}
+
+fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {
+    let orbit = home();
     let mut camera = commands.spawn((
         Camera3d::default(),
         Hdr,

@@ -272,6 +272,17 @@ pub struct JellyfishMeshes {
     pub(crate) written: Option<Resolution>,
     /// Buffers hold a frame not yet copied to the assets.
     pub(crate) dirty: bool,
+    /// The blended slice's bounds in the mesh's frame (see `culling`).
+    pub(crate) bounds: Option<bevy::camera::primitives::Aabb>,
+    /// Whether a camera saw it this frame (meshed) or not (skipped).
+    pub(crate) seen: bool,
+}
+
+impl JellyfishMeshes {
+    /// Whether the last frame meshed it: a camera saw it, or there is no camera.
+    pub fn seen(&self) -> bool {
+        self.seen
+    }
 }
 
 /// Marks the child entity holding a jellyfish's tentacle mesh.

@@ -1,13 +1,17 @@
 //! Meshes rebuilt every frame from the slice, blended between fixed steps, written into
-//! the same mesh assets in place.
+//! the same mesh assets in place; skipped for jellyfish no camera sees (see
+//! [`culling`](super::culling)).
 
 use super::JellyfishSystems;
 use super::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
+use super::culling::{active_frusta, seen, slice_bounds};
 use super::diagnostics::JellyfishTimings;
 use super::settings::JellyfishSettings;
 use crate::shape::{self, SurfaceBuffers};
 use crate::species::Species;
 use bevy::asset::RenderAssetUsages;
+use bevy::camera::primitives::{Aabb, Frustum};
+use bevy::camera::visibility::NoAutoAabb;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use std::time::Instant;
@@ -21,51 +25,80 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// The CPU-heavy half, in parallel: blend the steps around the frame's time and build the
-/// surfaces.
+/// The CPU-heavy half, in parallel: blend the steps around the frame's time, bound them,
+/// and build the surfaces of the jellyfish a camera sees.
 fn build_buffers(
-    mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes)>,
+    mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes, &GlobalTransform)>,
+    cameras: Query<(&Camera, &Frustum)>,
     time: Res<Time<Fixed>>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
 ) {
     let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
-    jellyfish.par_iter_mut().for_each(|(slice, mut meshes)| {
-        let Some(sim) = slice.sim() else {
-            return;
-        };
-        let start = Instant::now();
-        let meshes = &mut *meshes;
-        let Some((a, b, t)) = slice.history.bracket(slice.display_time(overstep, tick)) else {
-            return;
-        };
-        meshes.blended.blend(a, b, t);
-        let species: Species = settings.meshed(&slice.species);
-        let view = meshes.blended.view(sim.view().rest_bell);
-        match shape::build_into(
-            &mut meshes.buffers,
-            &view,
-            &species,
-            slice.seed,
-            meshes.blended.time as f32,
-        ) {
-            Ok(()) => meshes.dirty = true,
-            Err(e) => warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}"),
-        }
-        timings.add_meshing(start.elapsed());
-    });
+    let frusta = active_frusta(&cameras);
+    jellyfish
+        .par_iter_mut()
+        .for_each(|(slice, mut meshes, transform)| {
+            let Some(sim) = slice.sim() else {
+                return;
+            };
+            let start = Instant::now();
+            let meshes = &mut *meshes;
+            let Some((a, b, t)) = slice.history.bracket(slice.display_time(overstep, tick)) else {
+                return;
+            };
+            meshes.blended.blend(a, b, t);
+            let bounds = slice_bounds(&meshes.blended, &slice.species);
+            meshes.bounds = Some(bounds);
+            meshes.seen = seen(&frusta, &bounds, &transform.affine());
+            if !meshes.seen {
+                timings.add_meshing(start.elapsed());
+                return;
+            }
+            let species: Species = settings.meshed(&slice.species);
+            let view = meshes.blended.view(sim.view().rest_bell);
+            match shape::build_into(
+                &mut meshes.buffers,
+                &view,
+                &species,
+                slice.seed,
+                meshes.blended.time as f32,
+            ) {
+                Ok(()) => meshes.dirty = true,
+                Err(e) => warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}"),
+            }
+            timings.add_meshing(start.elapsed());
+        });
 }
 
 /// The serial half: copy the buffers into the mesh assets (creating them the first time).
 /// An empty surface (a species without tentacles) is hidden, never handed to Bevy.
 fn write_meshes(
     mut commands: Commands,
-    mut jellyfish: Query<(Entity, &mut JellyfishMeshes)>,
+    mut jellyfish: Query<(Entity, &mut JellyfishMeshes, Option<&mut Aabb>)>,
+    mut tentacle_bounds: Query<&mut Aabb, (With<JellyfishTentacles>, Without<JellyfishMeshes>)>,
     mut assets: ResMut<Assets<Mesh>>,
     timings: Res<JellyfishTimings>,
 ) {
     let start = Instant::now();
-    for (entity, mut meshes) in &mut jellyfish {
+    jellyfish.iter_mut().for_each(|(entity, meshes, aabb)| {
+        // Bounds follow the slice every frame, seen or not, so Bevy culls with them.
+        let Some(bounds) = meshes.bounds else {
+            return;
+        };
+        match aabb {
+            Some(mut aabb) => *aabb = bounds,
+            None => {
+                commands.entity(entity).insert((bounds, NoAutoAabb));
+            }
+        }
+        if let Some(child) = meshes.tentacle_entity
+            && let Ok(mut aabb) = tentacle_bounds.get_mut(child)
+        {
+            *aabb = bounds;
+        }
+    });
+    for (entity, mut meshes, _) in &mut jellyfish {
         if !meshes.dirty {
             continue;
         }
@@ -112,6 +145,8 @@ fn write_meshes(
                         JellyfishTentacles,
                         Mesh3d(handle.clone()),
                         Transform::default(),
+                        meshes.bounds.unwrap_or_default(),
+                        NoAutoAabb,
                         ChildOf(entity),
                     ))
                     .id();

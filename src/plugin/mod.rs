@@ -22,6 +22,7 @@
 
 mod asset;
 mod components;
+mod culling;
 mod diagnostics;
 mod material;
 mod meshing;
@@ -34,6 +35,7 @@ pub use asset::{SpeciesLoader, SpeciesRejected};
 pub use components::{Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, SwimMotion};
 pub use diagnostics::JellyfishDiagnostics;
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
+pub use prepare::NEW_SLICES_PER_FRAME;
 pub use settings::JellyfishSettings;
 
 use bevy::asset::{AssetEventSystems, AssetTrackingSystems};

@@ -18,9 +18,15 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// Builds the slice of each jellyfish whose species has loaded, in parallel. The phase
-/// offset starts the clock mid-stroke, which also decides which fixed ticks the slice
-/// steps on, spreading the load.
+/// At most this many slices are built in one frame: a school of hundreds spawned at once
+/// starts over a few frames instead of in one long one. A count, not a time budget, so
+/// which jellyfish start when is the same in every run.
+pub const NEW_SLICES_PER_FRAME: usize = 32;
+
+/// Builds the slice of each jellyfish whose species has loaded, in parallel, the lowest
+/// entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset starts the
+/// clock mid-stroke, which also decides which fixed ticks the slice steps on, spreading
+/// the load.
 fn create_slices(
     mut jellyfish: Query<(Entity, &Jellyfish, &mut JellyfishSlice)>,
     species: Res<Assets<Species>>,
@@ -33,10 +39,20 @@ fn create_slices(
     if edits.read().count() > 0 {
         failed.clear();
     }
+    let mut waiting: Vec<Entity> = jellyfish
+        .iter()
+        .filter(|(e, jelly, slice)| {
+            slice.sim.is_none() && !failed.contains(e) && species.contains(&jelly.species)
+        })
+        .map(|(e, ..)| e)
+        .collect();
+    waiting.sort_unstable();
+    waiting.truncate(NEW_SLICES_PER_FRAME);
+    let chosen: HashSet<Entity> = waiting.into_iter().collect();
     jellyfish
         .par_iter_mut()
         .for_each(|(entity, jelly, mut slice)| {
-            if slice.sim.is_some() || failed.contains(&entity) {
+            if !chosen.contains(&entity) {
                 return;
             }
             let Some(simulated) = species.get(&jelly.species) else {
