@@ -21,6 +21,8 @@ mod snow;
 mod stats;
 #[path = "../examples/aquarium/tank.rs"]
 mod tank;
+#[path = "../examples/aquarium/water.rs"]
+mod water;
 
 use bevy::diagnostic::DiagnosticsStore;
 use bevy::mesh::MeshPlugin;

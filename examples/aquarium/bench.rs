@@ -1,5 +1,6 @@
-//! The headless aquarium benchmark: the schools swim and mesh as in the windowed app, with
-//! no renderer, at a fixed frame rate (60 by default). It prints what a frame costs.
+//! The headless aquarium benchmark: the schools swim, stir the tank's water and mesh as in
+//! the windowed app, with no renderer, at a fixed frame rate (60 by default). It prints
+//! what a frame costs.
 
 use crate::school::School;
 use bevy::asset::{AssetPlugin, LoadState};
@@ -35,6 +36,7 @@ pub fn run(
         crate::school::plugin,
     ))
     .insert_resource(school)
+    .insert_resource(crate::water::tank_water())
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
         1.0 / fps,
     )));
@@ -71,7 +73,7 @@ pub fn run(
     for _ in 0..(fps as usize) {
         app.update();
     }
-    let (mut simulation, mut meshing, mut mesh_data) = (0.0, 0.0, 0.0);
+    let (mut simulation, mut meshing, mut mesh_data, mut water) = (0.0, 0.0, 0.0, 0.0);
     let steps_before = steps(&mut app);
     let mut frame_ms = Vec::with_capacity(frames);
     let start = Instant::now();
@@ -83,6 +85,7 @@ pub fn run(
         simulation += value(store, &JellyfishDiagnostics::SIMULATION);
         meshing += value(store, &JellyfishDiagnostics::MESHING);
         mesh_data += value(store, &JellyfishDiagnostics::MESH_DATA);
+        water += value(store, &JellyfishDiagnostics::WATER);
     }
     let n = frames.max(1) as f64;
     let jellyfish = count(&app).max(1.0);
@@ -109,6 +112,7 @@ pub fn run(
     let (seen, all) = seen(&mut app);
     println!("in view: {seen} of {all} meshed in the last frame");
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
+    println!("tank water: {:.2} ms per frame (one thread)", water / n);
     Ok(())
 }
 

@@ -78,6 +78,7 @@ fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {
 
 fn control(
     buttons: Option<Res<ButtonInput<MouseButton>>>,
+    keys: Option<Res<ButtonInput<KeyCode>>>,
     motion: Option<Res<AccumulatedMouseMotion>>,
     scroll: Option<Res<AccumulatedMouseScroll>>,
     mut camera: Query<(&mut Orbit, &mut Transform)>,
@@ -88,7 +89,9 @@ fn control(
     let Ok((mut orbit, mut transform)) = camera.single_mut() else {
         return;
     };
-    if buttons.pressed(MouseButton::Left) {
+    // Shift + left drag stirs the water (see `water`), it does not orbit.
+    let stirring = keys.is_some_and(|k| k.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]));
+    if buttons.pressed(MouseButton::Left) && !stirring {
         orbit.yaw -= motion.delta.x * 0.005;
         orbit.pitch = (orbit.pitch - motion.delta.y * 0.005).clamp(-1.45, 1.45);
     }

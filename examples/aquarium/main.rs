@@ -2,7 +2,7 @@
 //!
 //! `cargo run --release --example aquarium -- [--count N] [--seed S]`
 //!
-//! Left drag orbits, right drag pans, scroll zooms. With the `editor` feature (on by
+//! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water. With the `editor` feature (on by
 //! default) panels edit each species live, change the school size and show the frame
 //! rate, jellyfish count and the plugin's simulation and meshing time; every few seconds
 //! the log prints the same numbers.
@@ -26,6 +26,7 @@ mod stats;
 mod tank;
 #[cfg(feature = "editor")]
 mod ui;
+mod water;
 
 use bevy::diagnostic::DiagnosticsStore;
 use bevy::prelude::*;
@@ -43,6 +44,8 @@ struct Args {
     frames: Option<usize>,
     /// Frames per second of the benchmark.
     fps: f64,
+    /// A scripted stir across the middle of the tank two seconds in (pictures).
+    stir: bool,
     size: (u32, u32),
 }
 
@@ -57,6 +60,7 @@ impl Args {
             bench: false,
             frames: None,
             fps: 60.0,
+            stir: false,
             size: (1280, 720),
         };
         let mut it = std::env::args().skip(1);
@@ -74,6 +78,7 @@ impl Args {
                 }
                 "--screenshot" => args.screenshot = Some(value()?.into()),
                 "--bench" => args.bench = true,
+                "--stir" => args.stir = true,
                 "--frames" => {
                     let v = value()?;
                     args.frames = Some(v.parse().map_err(|_| bad(&v))?);
@@ -96,7 +101,7 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--screenshot out.png [--frames 120] [--size 1280x720]] \
+                         [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
                          [--bench [--frames 600] [--fps 60]]"
                     ));
                 }
@@ -176,8 +181,12 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let (width, height) = args.size;
     let school = args.school;
     let frames_to_render = args.frames.unwrap_or(120);
+    let stir = args.stir;
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
         app.add_plugins(AquariumPlugin { school });
+        if stir {
+            app.insert_resource(water::ScriptedStir::across_the_middle());
+        }
     })
     .map_err(|e| e.to_string())?;
     println!("rendering offscreen on {}", offscreen.adapter);

@@ -21,6 +21,7 @@ impl Plugin for AquariumPlugin {
             crate::school::plugin,
             crate::camera::plugin,
             crate::stats::plugin,
+            crate::water::plugin,
         ));
     }
 }

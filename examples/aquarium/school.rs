@@ -1,13 +1,15 @@
 //! The schools: `count` jellyfish of each shipped species, placed without overlap, each
 //! with its own seed and phase, kept in the tank by steering.
 //!
-//! The plugin swims each jellyfish along its local +Y axis and keeps rotations set by
-//! others, so steering is a gentle turn of that axis: away from the walls, the floor, the
-//! surface and close neighbours, plus a slow wander of its own.
+//! Each jellyfish carries the plugin's [`Steering`]: this module only says where it wants
+//! to go (a slow wander of its own, biased upwards, bent away from the walls, the floor,
+//! the surface and close neighbours); the plugin turns it towards that while it strokes,
+//! never while it coasts. Decided in fixed ticks, so a replay steers the same.
 
 use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
-use bevy_jellyfish::{Jellyfish, Species};
+use bevy_jellyfish::plugin::{JellyfishSlice, Steering, SwimMotion};
+use bevy_jellyfish::{Jellyfish, JellyfishSystems, Species};
 
 /// Scene units per metre: a 40 mm moon jelly is 1.2 units across.
 pub const SCALE: f32 = 30.0;
@@ -15,14 +17,15 @@ pub const SCALE: f32 = 30.0;
 /// (bell and tentacles, scene units).
 pub const SPECIES: [(&str, f32); 3] = [("aurelia", 0.9), ("aequorea", 1.1), ("sarsia", 1.0)];
 /// Steering starts this far from a wall, scene units.
-const MARGIN: f32 = 2.0;
+const MARGIN: f32 = 2.5;
 /// Below and above these heights jellyfish turn away from the floor (felt early: the
 /// tentacles hang a body length below the bell) and from the surface; they start between.
 const FLOOR_ZONE: f32 = 3.0;
-const SURFACE_ZONE: f32 = 2.5;
-/// Turn rate, rad/s: gentle when wandering, firmer near walls.
-const WANDER_TURN: f32 = 0.25;
-const WALL_TURN: f32 = 0.9;
+const SURFACE_ZONE: f32 = 3.5;
+
+/// Radians turned per bell diameter surged while contracting: twice the plugin's default,
+/// so a school turns away from the glass within two or three strokes.
+const AGILITY: f32 = 6.0;
 
 /// How many jellyfish of each species; changing it respawns the schools.
 #[derive(Resource, Clone, Copy, Debug)]
@@ -39,10 +42,8 @@ pub struct Swimmer {
 }
 
 pub fn plugin(app: &mut App) {
-    app.add_systems(
-        Update,
-        (respawn.run_if(resource_changed::<School>), steer).chain(),
-    );
+    app.add_systems(Update, respawn.run_if(resource_changed::<School>))
+        .add_systems(FixedUpdate, steer.before(JellyfishSystems::StepSlices));
 }
 
 /// A small deterministic generator (PCG-style), so a seed gives the same aquarium.
@@ -128,6 +129,7 @@ fn respawn(
                 radius: *radius,
                 wander: Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 100.0,
             },
+            Steering::heading(Vec3::Y).with_agility(AGILITY),
             Transform::from_translation(at)
                 .with_rotation(lean)
                 .with_scale(Vec3::splat(SCALE)),
@@ -151,16 +153,28 @@ fn wall_push(p: Vec3) -> Vec3 {
     )
 }
 
-/// Turns each jellyfish's swimming axis towards where it wants to go: a slowly wandering
-/// heading (biased upwards, as jellyfish mostly swim), bent away from walls and neighbours.
-fn steer(time: Res<Time>, mut swimmers: Query<(&Swimmer, &mut Transform)>) {
-    let (t, dt) = (time.elapsed_secs(), time.delta_secs());
-    let all: Vec<(Vec3, f32)> = swimmers
+/// Where each jellyfish wants to go: a slowly wandering heading (biased upwards, as
+/// jellyfish mostly swim), bent away from walls and neighbours. The plugin turns it only
+/// while it strokes, harder the harder it strokes.
+fn steer(
+    time: Res<Time<Fixed>>,
+    mut swimmers: Query<(&Swimmer, &JellyfishSlice, &SwimMotion, &mut Steering)>,
+) {
+    let t = time.elapsed_secs();
+    // Where they are in the simulation (not where the last frame drew them).
+    let mut all: Vec<(Vec3, f32)> = swimmers
         .iter()
-        .map(|(s, tf)| (tf.translation, s.radius))
+        .filter(|(_, slice, ..)| slice.sim().is_some())
+        .map(|(s, _, motion, _)| (motion.pose.position, s.radius))
         .collect();
-    for (swimmer, mut transform) in &mut swimmers {
-        let p = transform.translation;
+    // The same order every run: the steering is part of the replay.
+    all.sort_by(|a, b| {
+        a.0.to_array()
+            .partial_cmp(&b.0.to_array())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for (swimmer, _, motion, mut steering) in &mut swimmers {
+        let p = motion.pose.position;
         let w = swimmer.wander;
         let heading = Vec3::new(
             0.6 * (0.11 * t + w.x).sin(),
@@ -177,14 +191,6 @@ fn steer(time: Res<Time>, mut swimmers: Query<(&Swimmer, &mut Transform)>) {
             }
         }
         let desired = (heading.normalize() + 3.0 * push).normalize_or(Vec3::Y);
-        let axis = transform.rotation * Vec3::Y;
-        let angle = axis.angle_between(desired);
-        if angle < 1e-4 {
-            continue;
-        }
-        let rate = WANDER_TURN + (WALL_TURN - WANDER_TURN) * push.length().min(1.0);
-        let turn = Quat::from_rotation_arc(axis, desired);
-        let step = Quat::IDENTITY.slerp(turn, (rate * dt / angle).min(1.0));
-        transform.rotation = (step * transform.rotation).normalize();
+        steering.target = bevy_jellyfish::plugin::SteeringTarget::Heading(desired);
     }
 }

@@ -1,8 +1,10 @@
-//! Marine snow: a few hundred small pale flecks sinking slowly and drifting, moved on the
-//! CPU. One mesh and one material for all, so Bevy draws them as one batch.
+//! Marine snow: a few hundred small pale flecks sinking slowly and carried by the tank's
+//! water, moved on the CPU, drawn stretched along their motion (streaks) so a stir shows.
+//! One mesh and one material for all, so Bevy draws them as one batch.
 
 use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
+use bevy_jellyfish::plugin::AmbientWater;
 
 const FLAKES: usize = 500;
 /// The volume the flakes fill: the tank and some water in front of it, towards the camera.
@@ -17,6 +19,7 @@ pub fn plugin(app: &mut App) {
 struct Flake {
     sink: f32,
     phase: f32,
+    size: f32,
 }
 
 fn setup(
@@ -42,20 +45,36 @@ fn setup(
             Flake {
                 sink: 0.04 + 0.08 * rng.unit(),
                 phase: rng.unit() * std::f32::consts::TAU,
+                size,
             },
         ));
     }
 }
 
-fn drift(time: Res<Time>, mut flakes: Query<(&Flake, &mut Transform)>) {
+fn drift(time: Res<Time>, water: Res<AmbientWater>, mut flakes: Query<(&Flake, &mut Transform)>) {
     let (t, dt) = (time.elapsed_secs(), time.delta_secs());
+    let now = time.elapsed_secs_f64();
+    let water = &*water;
     flakes.par_iter_mut().for_each(|(flake, mut transform)| {
-        let p = &mut transform.translation;
-        p.y -= flake.sink * dt;
-        p.x += 0.06 * (0.3 * t + flake.phase).sin() * dt;
-        p.z += 0.05 * (0.23 * t + 2.0 * flake.phase).cos() * dt;
+        let p = transform.translation;
+        let current = water.velocity(p, now);
+        let own = Vec3::new(
+            0.06 * (0.3 * t + flake.phase).sin(),
+            -flake.sink,
+            0.05 * (0.23 * t + 2.0 * flake.phase).cos(),
+        );
+        let v = current + own;
+        let mut p = p + v * dt;
         if p.y < MIN.y {
             p.y = MAX.y;
         }
+        p = p.clamp(MIN, MAX);
+        // A streak as long as a twentieth of a second of travel, at least the flake.
+        let speed = current.length();
+        let stretch = 1.0 + speed * 0.05 / (0.02 * flake.size);
+        let along = current.try_normalize().unwrap_or(Vec3::Y);
+        *transform = Transform::from_translation(p)
+            .with_rotation(Quat::from_rotation_arc(Vec3::Y, along))
+            .with_scale(Vec3::new(flake.size, flake.size * stretch, flake.size));
     });
 }

@@ -114,9 +114,10 @@ impl JellyfishSlice {
         clock.added() + overstep - clock.step() - tick
     }
 
-    /// Starts the slice; its clock's start (the phase offset) picks the ticks it steps on.
-    pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32) {
-        self.history.restart(&sim);
+    /// Starts the slice at `pose`; its clock's start (the phase offset) picks the ticks
+    /// it steps on.
+    pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32, pose: Pose) {
+        self.history.restart(&sim, pose);
         self.sim = Some(sim);
         self.species = species;
         self.seed = seed;
@@ -140,15 +141,17 @@ impl SliceHistory {
     }
 
     /// Forgets the past: the slice's present state only (a new or rebuilt slice).
-    pub fn restart(&mut self, sim: &SliceSim) {
+    pub fn restart(&mut self, sim: &SliceSim, pose: Pose) {
         self.spare.extend(self.states.drain(..));
-        self.record(sim, 0.0);
+        self.record(sim, 0.0, pose);
     }
 
-    /// Records the slice's state after a step, dropping what a frame can no longer show.
-    pub fn record(&mut self, sim: &SliceSim, tick: f64) {
+    /// Records the slice's state and the jellyfish's pose after a step, dropping what a
+    /// frame can no longer show.
+    pub fn record(&mut self, sim: &SliceSim, tick: f64, pose: Pose) {
         let mut snapshot = self.spare.pop().unwrap_or_default();
         snapshot.capture(sim);
+        snapshot.pose = pose;
         self.states.push_back(snapshot);
         while self.states.len() > Self::capacity(sim, tick) {
             if let Some(old) = self.states.pop_front() {
@@ -178,10 +181,64 @@ impl SliceHistory {
         Some((last, last, 0.0))
     }
 
-    /// Swim distance at time `t`, m.
-    pub fn swim_at(&self, t: f64) -> f32 {
-        self.bracket(t)
-            .map_or(0.0, |(a, b, f)| a.swim + f * (b.swim - a.swim))
+    /// The pose at time `t`, blended between the steps around it.
+    pub fn pose_at(&self, t: f64) -> Option<Pose> {
+        self.bracket(t).map(|(a, b, f)| a.pose.blend(&b.pose, f))
+    }
+
+    /// Moves every stored pose as `edit` moves `from` (a game moved or turned the
+    /// jellyfish): what the frames show continues from where it was put.
+    pub fn move_poses(&mut self, from: Pose, to: Pose) {
+        for s in &mut self.states {
+            s.pose = s.pose.moved(from, to);
+        }
+    }
+}
+
+/// Where a jellyfish is and which way it points, world.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+pub struct Pose {
+    pub position: Vec3,
+    pub rotation: Quat,
+}
+
+impl Default for Pose {
+    fn default() -> Self {
+        Self {
+            position: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+        }
+    }
+}
+
+impl Pose {
+    pub fn of(transform: &Transform) -> Self {
+        Self {
+            position: transform.translation,
+            rotation: transform.rotation,
+        }
+    }
+
+    /// Between `self` (t = 0) and `other` (t = 1).
+    pub fn blend(&self, other: &Pose, t: f32) -> Pose {
+        Pose {
+            position: self.position.lerp(other.position, t),
+            // Unturned stays bit for bit unturned.
+            rotation: if self.rotation == other.rotation {
+                self.rotation
+            } else {
+                self.rotation.slerp(other.rotation, t)
+            },
+        }
+    }
+
+    /// This pose carried along with a rigid move that takes `from` to `to`.
+    pub fn moved(&self, from: Pose, to: Pose) -> Pose {
+        let turn = to.rotation * from.rotation.inverse();
+        Pose {
+            position: to.position + turn * (self.position - from.position),
+            rotation: (turn * self.rotation).normalize(),
+        }
     }
 }
 
@@ -195,6 +252,8 @@ pub(crate) struct Snapshot {
     pub swim: f32,
     /// Slice time of the state, s.
     pub time: f64,
+    /// The jellyfish's pose in the world after the step.
+    pub pose: Pose,
 }
 
 impl Snapshot {
@@ -233,6 +292,7 @@ impl Snapshot {
         self.centroid = Vec2::ZERO;
         self.swim = a.swim + t * (b.swim - a.swim);
         self.time = a.time + t as f64 * (b.time - a.time);
+        self.pose = a.pose.blend(&b.pose, t);
     }
 
     pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {
@@ -244,18 +304,33 @@ impl Snapshot {
     }
 }
 
-/// Where the plugin last put the jellyfish, so that moving or rotating it yourself
-/// (steering) is kept: swimming then continues from there.
+/// How the jellyfish travels: its pose after the newest slice step (the physics; the
+/// `Transform` shows it blended between steps) and its ground velocity. Moving or turning
+/// the `Transform` yourself moves this with it: travel continues from where it was put.
 #[derive(Component, Clone, Debug, Default, Reflect)]
 #[reflect(Component)]
 pub struct SwimMotion {
-    /// Translation at swim distance zero, along the current axis.
-    pub anchor: Vec3,
-    /// Blended swim distance last written, m.
-    pub distance: f32,
+    /// Pose after the newest step, world.
+    pub pose: Pose,
+    /// Ground velocity over the newest step (the water's plus its own swimming), world
+    /// units per second.
+    pub velocity: Vec3,
+    /// Its own swimming along its axis over the last fixed tick, world units per second
+    /// (negative while the bell recoils).
+    pub swim_speed: f32,
+    /// Swim distance at the newest step, m.
+    #[reflect(ignore)]
+    pub(crate) swum: f32,
+    /// What the plugin last wrote into the `Transform`, to see a game's own edits.
     #[reflect(ignore)]
     pub(crate) written: Option<Transform>,
 }
+
+/// A jellyfish with this holds its stroke: it drifts with the water, its bell at rest,
+/// and resumes the stroke where it stopped when the component goes.
+#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct Resting;
 
 /// The jellyfish's mesh assets and the buffers they are rebuilt from.
 ///

@@ -18,6 +18,9 @@ impl JellyfishDiagnostics {
     pub const MESHING: DiagnosticPath = DiagnosticPath::const_new("jellyfish/meshing_ms");
     /// Jellyfish with a running slice.
     pub const COUNT: DiagnosticPath = DiagnosticPath::const_new("jellyfish/count");
+    /// Stepping the tank's water ([`TankWater`](super::TankWater)), all fixed ticks of the
+    /// frame, ms.
+    pub const WATER: DiagnosticPath = DiagnosticPath::const_new("jellyfish/water_ms");
     /// Bytes written into mesh assets this frame (what the renderer re-uploads), MB.
     pub const MESH_DATA: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mesh_data_mb");
 }
@@ -27,6 +30,7 @@ impl JellyfishDiagnostics {
 pub(crate) struct JellyfishTimings {
     simulation_ns: AtomicU64,
     meshing_ns: AtomicU64,
+    water_ns: AtomicU64,
     mesh_bytes: AtomicU64,
 }
 
@@ -41,6 +45,11 @@ impl JellyfishTimings {
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
 
+    pub fn add_water(&self, d: Duration) {
+        self.water_ns
+            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
+    }
+
     pub fn add_mesh_bytes(&self, bytes: usize) {
         self.mesh_bytes.fetch_add(bytes as u64, Ordering::Relaxed);
     }
@@ -52,6 +61,7 @@ pub(super) fn plugin(app: &mut App) {
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESHING).with_suffix(" ms"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::WATER).with_suffix(" ms"))
         .add_systems(Last, record);
 }
 
@@ -64,6 +74,8 @@ fn record(
     let (simulation, meshing) = (ms(&timings.simulation_ns), ms(&timings.meshing_ns));
     diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || simulation);
     diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || meshing);
+    let water = ms(&timings.water_ns);
+    diagnostics.add_measurement(&JellyfishDiagnostics::WATER, || water);
     let bytes = timings.mesh_bytes.swap(0, Ordering::Relaxed);
     diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || bytes as f64 * 1e-6);
     diagnostics.add_measurement(&JellyfishDiagnostics::COUNT, || {

@@ -29,14 +29,22 @@ mod meshing;
 mod motion;
 mod prepare;
 mod settings;
+mod steering;
 mod step;
+mod tank;
+mod water;
 
 pub use asset::{SpeciesLoader, SpeciesRejected};
-pub use components::{Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, SwimMotion};
+pub use components::{
+    Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting, SwimMotion,
+};
 pub use diagnostics::JellyfishDiagnostics;
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
 pub use prepare::NEW_SLICES_PER_FRAME;
 pub use settings::JellyfishSettings;
+pub use steering::{Steering, SteeringTarget};
+pub use tank::{Impulse, TankWater};
+pub use water::{AmbientWater, SampledWater, WaterField};
 
 use bevy::asset::{AssetEventSystems, AssetTrackingSystems};
 use bevy::prelude::*;
@@ -70,6 +78,8 @@ impl Plugin for JellyfishPlugin {
         }
         app.register_type::<JellyfishSettings>()
             .register_type::<Jellyfish>()
+            .register_type::<Steering>()
+            .register_type::<Resting>()
             .add_plugins((
                 asset::plugin,
                 diagnostics::plugin,

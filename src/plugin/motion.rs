@@ -1,8 +1,9 @@
-//! Swimming in the world: each jellyfish moves along its own +Y axis by its slice's swim
-//! distance at the time the frame shows, blended between the fixed steps around it.
+//! Drawing the jellyfish where it is: its `Transform` blended between the poses of the
+//! slice steps around the frame's time, and a game's own moves of the `Transform` carried
+//! into the travel.
 
 use super::JellyfishSystems;
-use super::components::{JellyfishSlice, SwimMotion};
+use super::components::{JellyfishSlice, Pose, SwimMotion};
 use bevy::prelude::*;
 
 pub(super) fn plugin(app: &mut App) {
@@ -12,28 +13,33 @@ pub(super) fn plugin(app: &mut App) {
     );
 }
 
-/// The translation is `anchor + axis · distance`, not a sum of per-frame increments, so it
-/// is bit-identical at any frame rate. A transform changed by someone else (steering)
-/// moves the anchor: swimming continues from where it was put, along its new axis.
+/// The translation and rotation are the poses recorded at slice steps, blended, not a sum
+/// of per-frame increments, so a frame rate changes nothing but how often they are drawn.
+/// A `Transform` changed by someone else since the plugin wrote it (a game's teleport or
+/// turn) moves the travel and every stored pose with it.
 fn write_transforms(
-    mut jellyfish: Query<(&JellyfishSlice, &mut SwimMotion, &mut Transform)>,
+    mut jellyfish: Query<(&mut JellyfishSlice, &mut SwimMotion, &mut Transform)>,
     time: Res<Time<Fixed>>,
 ) {
     let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
     jellyfish
         .par_iter_mut()
-        .for_each(|(slice, mut motion, mut transform)| {
+        .for_each(|(mut slice, mut motion, mut transform)| {
             if slice.sim.is_none() {
                 return;
             }
-            let distance = slice.history.swim_at(slice.display_time(overstep, tick));
-            let along = |tf: &Transform, d: f32| tf.rotation * (tf.scale * Vec3::Y * d);
-            if motion.written != Some(*transform) {
-                motion.anchor = transform.translation - along(&transform, motion.distance);
+            if let Some(written) = motion.written
+                && written != *transform
+            {
+                let (from, to) = (Pose::of(&written), Pose::of(&transform));
+                slice.history.move_poses(from, to);
+                motion.pose = motion.pose.moved(from, to);
             }
-            let translation = motion.anchor + along(&transform, distance);
-            transform.translation = translation;
-            motion.distance = distance;
+            let Some(pose) = slice.history.pose_at(slice.display_time(overstep, tick)) else {
+                return;
+            };
+            transform.translation = pose.position;
+            transform.rotation = pose.rotation;
             motion.written = Some(*transform);
         });
 }

@@ -2,7 +2,7 @@
 
 use super::JellyfishSystems;
 use super::asset::SpeciesRejected;
-use super::components::{Jellyfish, JellyfishSlice};
+use super::components::{Jellyfish, JellyfishSlice, Pose, SwimMotion};
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::HashSet;
@@ -28,7 +28,13 @@ pub const NEW_SLICES_PER_FRAME: usize = 32;
 /// clock mid-stroke, which also decides which fixed ticks the slice steps on, spreading
 /// the load.
 fn create_slices(
-    mut jellyfish: Query<(Entity, &Jellyfish, &mut JellyfishSlice)>,
+    mut jellyfish: Query<(
+        Entity,
+        &Jellyfish,
+        &mut JellyfishSlice,
+        &mut SwimMotion,
+        &Transform,
+    )>,
     species: Res<Assets<Species>>,
     mut edits: MessageReader<AssetEvent<Species>>,
     mut refused: Local<Refused>,
@@ -41,7 +47,7 @@ fn create_slices(
     }
     let mut waiting: Vec<Entity> = jellyfish
         .iter()
-        .filter(|(e, jelly, slice)| {
+        .filter(|(e, jelly, slice, ..)| {
             slice.sim.is_none() && !failed.contains(e) && species.contains(&jelly.species)
         })
         .map(|(e, ..)| e)
@@ -51,7 +57,7 @@ fn create_slices(
     let chosen: HashSet<Entity> = waiting.into_iter().collect();
     jellyfish
         .par_iter_mut()
-        .for_each(|(entity, jelly, mut slice)| {
+        .for_each(|(entity, jelly, mut slice, mut motion, transform)| {
             if !chosen.contains(&entity) {
                 return;
             }
@@ -62,7 +68,13 @@ fn create_slices(
                 Ok(mut sim) => {
                     let seed = jelly.seed_for(entity);
                     sim.set_time(jelly.phase_for(seed) * simulated.period());
-                    slice.start(sim, simulated.clone(), seed);
+                    let pose = Pose::of(transform);
+                    *motion = SwimMotion {
+                        pose,
+                        swum: sim.swim_distance(),
+                        ..default()
+                    };
+                    slice.start(sim, simulated.clone(), seed, pose);
                 }
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
             }
@@ -90,7 +102,7 @@ struct Refused {
 /// anything.
 fn apply_edits(
     mut events: MessageReader<AssetEvent<Species>>,
-    mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice)>,
+    mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice, &mut SwimMotion)>,
     species: Res<Assets<Species>>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
@@ -102,7 +114,7 @@ fn apply_edits(
         })
         .collect();
     let mut reported = HashSet::new();
-    for (jelly, mut slice) in &mut jellyfish {
+    for (jelly, mut slice, mut motion) in &mut jellyfish {
         let id = jelly.species.id();
         let swapped = jelly.is_changed() && !jelly.is_added();
         if !edited.contains(&id) && !swapped {
@@ -128,8 +140,9 @@ fn apply_edits(
                 slice.species = simulated.clone();
                 // A new shape or a new step (the stored times are the old clock's).
                 if topology || *sim.clock() != clock {
-                    slice.history.restart(sim);
+                    slice.history.restart(sim, motion.pose);
                 }
+                motion.swum = sim.swim_distance();
             }
             Err(error) => {
                 if reported.insert(id) {

@@ -38,8 +38,9 @@ impl Resolution {
                     0
                 },
                 sides: species.tentacle_sides.clamp(3, 32) as usize,
-                // As many rings along a tentacle as on the bell: fine enough to bend smoothly.
-                points: rings + 1,
+                // Half as many rings along a tentacle as on the bell (a thin tube bends
+                // smoothly with fewer): tentacles are most of a fringed jellyfish's vertices.
+                points: rings / 2 + 1,
             },
         }
     }

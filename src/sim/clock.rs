@@ -17,6 +17,9 @@ pub struct FixedClock {
     added: f64,
     /// Steps taken since time zero (the start offset counts as steps already taken).
     taken: u64,
+    /// Of those, steps taken with the stroke held (resting): the muscle drive's phase
+    /// counts only the others, so a rest resumes the stroke where it stopped.
+    held: u64,
 }
 
 /// The most steps one `advance` may take; time beyond it is dropped, so a huge `dt` (a
@@ -32,6 +35,7 @@ impl FixedClock {
             steps_per_cycle,
             added: 0.0,
             taken: 0,
+            held: 0,
         }
     }
 
@@ -64,19 +68,19 @@ impl FixedClock {
         self.taken
     }
 
-    /// Phase of the contraction cycle at the state, in `[0, 1)`: exact, in whole steps.
-    pub fn phase(&self) -> f32 {
-        (self.taken % self.steps_per_cycle as u64) as f32 / self.steps_per_cycle as f32
+    /// Steps the muscle drive has counted: all but the held ones.
+    pub fn stroke_steps(&self) -> u64 {
+        self.taken - self.held
     }
 
-    /// Phase at the end of the next step, in `[0, 1)`.
-    pub fn next_phase(&self) -> f32 {
-        ((self.taken + 1) % self.steps_per_cycle as u64) as f32 / self.steps_per_cycle as f32
+    /// Phase of the contraction cycle at the state, in `[0, 1)`: exact, in whole steps.
+    pub fn phase(&self) -> f32 {
+        (self.stroke_steps() % self.steps_per_cycle as u64) as f32 / self.steps_per_cycle as f32
     }
 
     /// Completed contraction cycles.
     pub fn cycle(&self) -> u64 {
-        self.taken / self.steps_per_cycle as u64
+        self.stroke_steps() / self.steps_per_cycle as u64
     }
 
     /// Starts the clock at `time` s: the state begins at the last step boundary at or
@@ -98,7 +102,9 @@ impl FixedClock {
         }
         let phase = self.phase() as f64;
         let n = c.steps_per_cycle as f64;
-        c.taken = self.cycle() * c.steps_per_cycle as u64 + (phase * n).round() as u64;
+        // Held (resting) time carries over as held time of the new step.
+        c.held = (self.held as f64 * self.step / c.step).round() as u64;
+        c.taken = c.held + self.cycle() * c.steps_per_cycle as u64 + (phase * n).round() as u64;
         c.added = c.time() + self.overstep_fraction() as f64 * c.step;
         c
     }
@@ -131,6 +137,12 @@ impl FixedClock {
     /// Marks one step as taken.
     pub fn tick(&mut self) {
         self.taken += 1;
+    }
+
+    /// Marks one step as taken with the stroke held: time passes, the phase does not.
+    pub fn tick_held(&mut self) {
+        self.taken += 1;
+        self.held += 1;
     }
 }
 

@@ -205,13 +205,13 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
 }
 
 /// Vertices of the species' mesh: both umbrella surfaces (an apex vertex and `rings`
-/// rings of `segments + 1`) and the tentacles (two caps and `rings + 1` rings of
+/// rings of `segments + 1`) and the tentacles (two caps and `rings / 2 + 1` rings of
 /// `sides + 1` each). `shape::Resolution` builds exactly this (a test holds them equal).
 pub fn mesh_vertices(s: &Species) -> usize {
     let (rings, segments) = (s.mesh_rings as usize, s.mesh_segments as usize);
     let umbrella = 2 * (1 + rings * (segments + 1));
     let tentacles = if s.tentacle_length > 0.0 {
-        s.tentacle_count as usize * (2 + (rings + 1) * (s.tentacle_sides as usize + 1))
+        s.tentacle_count as usize * (2 + (rings / 2 + 1) * (s.tentacle_sides as usize + 1))
     } else {
         0
     };

@@ -42,6 +42,8 @@ pub struct SliceSim {
     speed: f32,
     /// Hold the slice mirror-symmetric about its axis (see [`SliceSim::set_mirror_symmetry`]).
     mirror_symmetry: bool,
+    /// The stroke is held (see [`SliceSim::set_resting`]).
+    resting: bool,
     /// Coupled substeps taken (a fixed step is one, or two or four when split).
     substeps: u64,
     last_substeps: usize,
@@ -86,6 +88,7 @@ impl SliceSim {
             recoveries: 0,
             speed: 0.0,
             mirror_symmetry: true,
+            resting: false,
             substeps: 0,
             last_substeps: 0,
             coupling: Coupling::default(),
@@ -276,6 +279,18 @@ impl SliceSim {
     pub fn set_mirror_symmetry(&mut self, on: bool) {
         self.mirror_symmetry = on;
         self.fluid.mirror = on;
+    }
+
+    /// Holds the stroke (`true`) or resumes it: while resting the muscles keep the length
+    /// they had and the bell drifts in its water; the stroke's phase does not advance, so
+    /// it resumes where it stopped. Time, the water and the bell's flow go on.
+    pub fn set_resting(&mut self, resting: bool) {
+        self.resting = resting;
+    }
+
+    /// Whether the stroke is held.
+    pub fn resting(&self) -> bool {
+        self.resting
     }
 
     /// Moves the clock to `time` seconds without stepping: individuals spawned together

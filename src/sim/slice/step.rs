@@ -30,13 +30,22 @@ impl SliceSim {
             split *= 2;
         }
         let per_cycle = self.clock.steps_per_cycle() as u64;
-        let first = (self.clock.steps() % per_cycle) * split as u64;
+        let first = (self.clock.stroke_steps() % per_cycle) * split as u64;
         let n = per_cycle * split as u64;
         for s in 1..=split as u64 {
-            let phase = ((first + s) % n) as f32 / n as f32;
+            // Resting holds the muscles where the stroke stopped.
+            let phase = if self.resting {
+                first as f32 / n as f32
+            } else {
+                ((first + s) % n) as f32 / n as f32
+            };
             self.step(dt / split as f32, phase);
         }
-        self.clock.tick();
+        if self.resting {
+            self.clock.tick_held();
+        } else {
+            self.clock.tick();
+        }
     }
 
     /// One coupled step of `dt` seconds, ending at muscle phase `phase`.
