@@ -209,6 +209,9 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
         simulation / frames,
         meshing / frames,
     );
+    if let Some(tank) = offscreen.world().get_resource::<bevy_jellyfish::plugin::TankWater>() {
+        println!("tank water: fastest {:.2} units/s", tank.speed_max());
+    }
     offscreen.capture(path)?;
     println!("wrote {}", path.display());
     Ok(())

@@ -1,4 +1,4 @@
-//! Marine snow: a few hundred small pale flecks sinking slowly and carried by the tank's
+//! Marine snow: about a thousand small pale flecks sinking slowly and carried by the tank's
 //! water, moved on the CPU, drawn stretched along their motion (streaks) so a stir shows.
 //! One mesh and one material for all, so Bevy draws them as one batch.
 
@@ -6,7 +6,10 @@ use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
 use bevy_jellyfish::plugin::AmbientWater;
 
-const FLAKES: usize = 500;
+const FLAKES: usize = 1200;
+/// How much of its travel a flake is drawn stretched over, s: long enough for a stir to
+/// read as streaks across the tank, short enough that still water leaves dots.
+const STREAK_SECONDS: f32 = 0.25;
 /// The volume the flakes fill: the tank and some water in front of it, towards the camera.
 const MIN: Vec3 = Vec3::new(-HALF_WIDTH - 3.0, 0.0, -HALF_DEPTH - 2.0);
 const MAX: Vec3 = Vec3::new(HALF_WIDTH + 3.0, SURFACE, HALF_DEPTH + 4.0);
@@ -69,9 +72,9 @@ fn drift(time: Res<Time>, water: Res<AmbientWater>, mut flakes: Query<(&Flake, &
             p.y = MAX.y;
         }
         p = p.clamp(MIN, MAX);
-        // A streak as long as a twentieth of a second of travel, at least the flake.
+        // A streak as long as a quarter of a second of travel, at least the flake.
         let speed = current.length();
-        let stretch = 1.0 + speed * 0.05 / (0.02 * flake.size);
+        let stretch = 1.0 + speed * STREAK_SECONDS / (0.02 * flake.size);
         let along = current.try_normalize().unwrap_or(Vec3::Y);
         *transform = Transform::from_translation(p)
             .with_rotation(Quat::from_rotation_arc(Vec3::Y, along))

@@ -10,7 +10,7 @@ use bevy_jellyfish::plugin::TankWater;
 /// The water's cells, scene units: coarse, a fraction of a millisecond a tick.
 const CELL: f32 = 0.75;
 /// How far a stir reaches, scene units.
-pub const STIR_RADIUS: f32 = 1.5;
+pub const STIR_RADIUS: f32 = 2.0;
 
 /// A stir at a fixed place and tick, for pictures that show the water moving.
 #[derive(Resource, Clone, Copy, Debug)]
