@@ -28,6 +28,7 @@ use bevy::diagnostic::DiagnosticsStore;
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::{SurfaceMode, SurfacePath};
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use scene::AquariumPlugin;
 use school::School;
@@ -76,6 +77,19 @@ impl Picture {
             .count()
     }
 
+    /// Mean absolute difference per channel (of 255), and the pixels where any channel
+    /// differs by more than `threshold`.
+    fn difference(&self, other: &Picture, threshold: i32) -> (f64, usize) {
+        let (mut sum, mut over, mut n) = (0i64, 0, 0);
+        for (a, b) in self.pixels().zip(other.pixels()) {
+            let d = [0, 1, 2].map(|c| (a[c] - b[c]).abs());
+            sum += (d[0] + d[1] + d[2]) as i64;
+            over += usize::from(d.iter().any(|&v| v > threshold));
+            n += 3;
+        }
+        (sum as f64 / n as f64, over)
+    }
+
     fn mean_brightness(&self) -> f64 {
         let n = (WIDTH * HEIGHT) as f64;
         self.pixels()
@@ -96,7 +110,10 @@ fn jellyfish_show_up_in_the_tank() {
         seed: 3,
     };
     let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
-        app.add_plugins(AquariumPlugin { school });
+        app.add_plugins(AquariumPlugin {
+            school,
+            surfaces: SurfaceMode::Auto,
+        });
     }) {
         Ok(offscreen) => offscreen,
         Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),
@@ -154,6 +171,67 @@ fn jellyfish_show_up_in_the_tank() {
     );
 }
 
+/// Template meshes shaped by the vertex shader draw what CPU meshes draw: the same school
+/// at the same moment, rendered both ways, differs only where the CPU's noise (blended
+/// between time knots) and the shader's (exact) part by micrometres.
+#[test]
+fn templates_draw_what_cpu_meshes_draw() {
+    let render = |surfaces: SurfaceMode| {
+        let school = School {
+            per_species: PER_SPECIES,
+            seed: 5,
+        };
+        let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
+            app.add_plugins(AquariumPlugin { school, surfaces });
+        }) {
+            Ok(offscreen) => offscreen,
+            Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),
+            Err(e) => {
+                eprintln!("skipping the template comparison: {e}");
+                return None;
+            }
+        };
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut shot = |frames: usize, name: String| {
+            for _ in 0..frames {
+                offscreen.update();
+            }
+            let path = dir.join(name);
+            offscreen.capture(&path).unwrap();
+            Picture::read(&path)
+        };
+        let now = shot(40, format!("{surfaces:?}.png"));
+        let later = shot(6, format!("{surfaces:?}_later.png"));
+        let path = *offscreen.world().resource::<SurfacePath>();
+        Some((now, later, path))
+    };
+    let Some((cpu, _, cpu_path)) = render(SurfaceMode::CpuMeshes) else {
+        return;
+    };
+    let (templates, later, path) = render(SurfaceMode::Templates).unwrap();
+    assert_eq!(cpu_path, SurfacePath::CpuMeshes);
+    assert_eq!(
+        path,
+        SurfacePath::Templates,
+        "this adapter reads storage buffers in vertex shaders, so templates must be used"
+    );
+    let (mean, differing) = cpu.difference(&templates, 8);
+    let (_, moved) = templates.difference(&later, 8);
+    println!(
+        "templates against CPU meshes: mean difference {mean:.4} of 255, {differing} pixels \
+         differ by more than 8; a tenth of a second of swimming changes {moved}"
+    );
+    assert!(
+        moved > 1000,
+        "the picture has jellyfish that move: {moved} pixels"
+    );
+    assert!(
+        mean < 0.05 && differing * 50 < moved,
+        "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved})"
+    );
+}
+
 /// A minute and a half of swimming, headless: steering keeps every bell in the tank
 /// (jellyfish swim a tank's width in well under that).
 #[test]
@@ -170,6 +248,7 @@ fn schools_stay_in_the_tank() {
         JellyfishPlugin {
             settings: JellyfishSettings {
                 mesh_resolution_scale: 0.25,
+                ..default()
             },
         },
         school::plugin,

@@ -144,6 +144,7 @@ fn app() -> (App, Handle<Species>, Entity) {
         JellyfishPlugin {
             settings: JellyfishSettings {
                 mesh_resolution_scale: 0.3,
+                ..default()
             },
         },
     ))

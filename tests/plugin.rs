@@ -18,6 +18,7 @@ use std::time::Duration;
 fn settings() -> JellyfishSettings {
     JellyfishSettings {
         mesh_resolution_scale: 0.5,
+        ..default()
     }
 }
 
@@ -271,6 +272,7 @@ fn settings_change_only_the_drawing() {
     let vertices = umbrella_positions(&app, e).len();
     app.insert_resource(JellyfishSettings {
         mesh_resolution_scale: 1.0,
+        ..default()
     });
     run(&mut app, 2);
     assert_eq!(slice(&app, e).sim().unwrap().species(), &before);

@@ -25,6 +25,7 @@ fn app() -> App {
         JellyfishPlugin {
             settings: JellyfishSettings {
                 mesh_resolution_scale: 0.25,
+                ..default()
             },
         },
     ))

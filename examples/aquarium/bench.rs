@@ -8,8 +8,9 @@ use bevy::camera::primitives::Frustum;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
+use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice};
+use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice, SurfacePath};
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
@@ -35,6 +36,9 @@ pub fn run(
         JellyfishPlugin { settings },
         crate::school::plugin,
     ))
+    // No renderer here, so no storage buffers unless we ask: templates pack their shapes
+    // into them as in the window (what reaches the GPU is what the bench counts).
+    .init_asset::<ShaderBuffer>()
     .insert_resource(school)
     .insert_resource(crate::water::tank_water())
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
@@ -109,6 +113,8 @@ pub fn run(
     );
     // Every jellyfish runs its full slice until levels of detail exist.
     println!("tiers: near {}, mid 0, far 0", count(&app));
+    let path = app.world().get_resource::<SurfacePath>().copied();
+    println!("surfaces: {path:?}");
     let (seen, all) = seen(&mut app);
     println!("in view: {seen} of {all} meshed in the last frame");
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);

@@ -30,7 +30,8 @@ mod water;
 
 use bevy::diagnostic::DiagnosticsStore;
 use bevy::prelude::*;
-use bevy_jellyfish::JellyfishDiagnostics;
+use bevy_jellyfish::plugin::SurfaceMode;
+use bevy_jellyfish::{JellyfishDiagnostics, JellyfishSettings};
 use scene::AquariumPlugin;
 use school::School;
 use std::path::PathBuf;
@@ -47,6 +48,9 @@ struct Args {
     /// A scripted stir across the middle of the tank two seconds in (pictures).
     stir: bool,
     size: (u32, u32),
+    /// Where surfaces are built: templates on the GPU (the bench packs them without one)
+    /// or CPU meshes.
+    surfaces: SurfaceMode,
 }
 
 impl Args {
@@ -62,6 +66,7 @@ impl Args {
             fps: 60.0,
             stir: false,
             size: (1280, 720),
+            surfaces: SurfaceMode::Auto,
         };
         let mut it = std::env::args().skip(1);
         while let Some(flag) = it.next() {
@@ -79,6 +84,15 @@ impl Args {
                 "--screenshot" => args.screenshot = Some(value()?.into()),
                 "--bench" => args.bench = true,
                 "--stir" => args.stir = true,
+                "--surfaces" => {
+                    let v = value()?;
+                    args.surfaces = match v.as_str() {
+                        "auto" => SurfaceMode::Auto,
+                        "templates" => SurfaceMode::Templates,
+                        "cpu" => SurfaceMode::CpuMeshes,
+                        _ => return Err(bad(&v)),
+                    };
+                }
                 "--frames" => {
                     let v = value()?;
                     args.frames = Some(v.parse().map_err(|_| bad(&v))?);
@@ -101,6 +115,7 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
+                         [--surfaces auto|templates|cpu] \
                          [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
                          [--bench [--frames 600] [--fps 60]]"
                     ));
@@ -124,7 +139,15 @@ fn main() -> ExitCode {
             args.school,
             args.frames.unwrap_or(600),
             args.fps,
-            scene::settings(),
+            JellyfishSettings {
+                // Headless, Auto would mean CPU meshes; the windowed app on a GPU that
+                // can uses templates, so that is what the bench measures by default.
+                surfaces: match args.surfaces {
+                    SurfaceMode::Auto => SurfaceMode::Templates,
+                    chosen => chosen,
+                },
+                ..scene::settings()
+            },
             task_pools(),
         ) {
             Ok(()) => ExitCode::SUCCESS,
@@ -156,6 +179,7 @@ fn main() -> ExitCode {
             .set(task_pools()),
         AquariumPlugin {
             school: args.school,
+            surfaces: args.surfaces,
         },
     ));
     #[cfg(feature = "editor")]
@@ -181,9 +205,9 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let (width, height) = args.size;
     let school = args.school;
     let frames_to_render = args.frames.unwrap_or(120);
-    let stir = args.stir;
+    let (stir, surfaces) = (args.stir, args.surfaces);
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
-        app.add_plugins(AquariumPlugin { school });
+        app.add_plugins(AquariumPlugin { school, surfaces });
         if stir {
             app.insert_resource(water::ScriptedStir::across_the_middle());
         }
@@ -209,7 +233,10 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
         simulation / frames,
         meshing / frames,
     );
-    if let Some(tank) = offscreen.world().get_resource::<bevy_jellyfish::plugin::TankWater>() {
+    if let Some(tank) = offscreen
+        .world()
+        .get_resource::<bevy_jellyfish::plugin::TankWater>()
+    {
         println!("tank water: fastest {:.2} units/s", tank.speed_max());
     }
     offscreen.capture(path)?;

@@ -3,16 +3,22 @@
 
 use crate::school::School;
 use bevy::prelude::*;
+use bevy_jellyfish::plugin::SurfaceMode;
 use bevy_jellyfish::{JellyfishPlugin, JellyfishSettings};
 
 pub struct AquariumPlugin {
     pub school: School,
+    /// Where surfaces are built (`--surfaces`).
+    pub surfaces: SurfaceMode,
 }
 
 impl Plugin for AquariumPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins(JellyfishPlugin {
-            settings: settings(),
+            settings: JellyfishSettings {
+                surfaces: self.surfaces,
+                ..settings()
+            },
         })
         .insert_resource(self.school)
         .add_plugins((

@@ -1,5 +1,7 @@
 //! The components of one jellyfish. Spawn [`Jellyfish`]; the rest is required by it.
 
+use super::surface::SurfacePath;
+use crate::shape::packed::ShapePacker;
 use crate::shape::{JellyMesh, Resolution};
 use crate::sim::{SliceSim, SliceView};
 use crate::species::Species;
@@ -332,16 +334,26 @@ pub struct SwimMotion {
 #[reflect(Component)]
 pub struct Resting;
 
-/// The jellyfish's mesh assets and the buffers they are rebuilt from.
+/// The jellyfish's meshes and what they are built from each frame.
 ///
 /// The umbrella is the jellyfish entity's own `Mesh3d`; all tentacles are one mesh on a
-/// child ([`JellyfishTentacles`]). Despawning drops the handles, which frees the meshes.
+/// child ([`JellyfishTentacles`]). With CPU meshes these are the jellyfish's own assets,
+/// rebuilt every frame (despawning frees them); with templates (see
+/// [`SurfaceMode`](super::SurfaceMode)) they are shared by every jellyfish of the same
+/// resolution and the vertex shader shapes them from the jellyfish's packed shape.
 #[derive(Component, Default)]
 pub struct JellyfishMeshes {
     pub umbrella: Option<Handle<Mesh>>,
     pub tentacles: Option<Handle<Mesh>>,
     pub tentacle_entity: Option<Entity>,
+    /// How it is drawn, once set up.
+    pub(crate) path: Option<SurfacePath>,
+    /// CPU meshes: the buffers the assets are rebuilt from.
     pub(crate) buffers: JellyMesh,
+    /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
+    pub(crate) block: Vec<f32>,
+    pub(crate) packer: ShapePacker,
+    pub(crate) slot: Option<u32>,
     pub(crate) blended: Snapshot,
     /// The topology the mesh assets were written with.
     pub(crate) written: Option<Resolution>,
@@ -357,6 +369,11 @@ impl JellyfishMeshes {
     /// Whether the last frame meshed it: a camera saw it, or there is no camera.
     pub fn seen(&self) -> bool {
         self.seen
+    }
+
+    /// How its surfaces are built, once the plugin has set it up.
+    pub fn path(&self) -> Option<SurfacePath> {
+        self.path
     }
 }
 

@@ -2,10 +2,13 @@
 //!
 //! Only where the app renders (`Assets<StandardMaterial>` exists): headless apps and tests
 //! run without it. One material pair per species, updated in place when it is edited.
-//! A jellyfish that already has a `MeshMaterial3d<StandardMaterial>` keeps its own.
+//! These are for CPU meshes; template meshes wear the same look through
+//! [`SurfaceMaterial`](super::SurfaceMaterial). A jellyfish that already has a
+//! `MeshMaterial3d<StandardMaterial>` keeps its own, and is drawn with CPU meshes.
 
 use super::JellyfishSystems;
 use super::components::{Jellyfish, JellyfishMeshes, JellyfishTentacles};
+use super::surface::SurfacePath;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -20,6 +23,15 @@ pub struct JellyfishMaterials {
 pub struct SpeciesMaterials {
     pub bell: Handle<StandardMaterial>,
     pub tentacles: Handle<StandardMaterial>,
+}
+
+impl JellyfishMaterials {
+    /// Whether the plugin made this material (rather than the game).
+    pub fn is_ours(&self, material: &Handle<StandardMaterial>) -> bool {
+        self.by_species
+            .values()
+            .any(|m| m.bell == *material || m.tentacles == *material)
+    }
 }
 
 pub(super) fn plugin(app: &mut App) {
@@ -98,7 +110,7 @@ fn assign_materials(
     mut commands: Commands,
     bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<StandardMaterial>>>,
     tentacles: Query<(Entity, &ChildOf), WithoutMaterial<JellyfishTentacles>>,
-    parents: Query<&Jellyfish>,
+    parents: Query<(&Jellyfish, &JellyfishMeshes)>,
     species: Res<Assets<Species>>,
     mut cache: ResMut<JellyfishMaterials>,
     mut materials: ResMut<Assets<StandardMaterial>>,
@@ -116,15 +128,18 @@ fn assign_materials(
                 .clone(),
         )
     };
+    let cpu = |m: &JellyfishMeshes| m.path == Some(SurfacePath::CpuMeshes);
     for (entity, jelly, meshes) in &bells {
         if meshes.umbrella.is_some()
+            && cpu(meshes)
             && let Some(m) = get(&jelly.species)
         {
             commands.entity(entity).insert(MeshMaterial3d(m.bell));
         }
     }
     for (entity, child_of) in &tentacles {
-        if let Ok(jelly) = parents.get(child_of.parent())
+        if let Ok((jelly, meshes)) = parents.get(child_of.parent())
+            && cpu(meshes)
             && let Some(m) = get(&jelly.species)
         {
             commands.entity(entity).insert(MeshMaterial3d(m.tentacles));

@@ -7,8 +7,8 @@ use super::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
 use super::culling::{active_frusta, seen, slice_bounds};
 use super::diagnostics::JellyfishTimings;
 use super::settings::JellyfishSettings;
+use super::surface::{self, SurfacePath};
 use crate::shape::{self, SurfaceBuffers};
-use crate::species::Species;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::camera::visibility::NoAutoAabb;
@@ -19,14 +19,20 @@ use std::time::Instant;
 pub(super) fn plugin(app: &mut App) {
     app.add_systems(
         PostUpdate,
-        (build_buffers, write_meshes)
+        (
+            surface::set_up,
+            build_buffers,
+            write_meshes,
+            surface::upload,
+        )
             .chain()
             .in_set(JellyfishSystems::RebuildMeshes),
     );
 }
 
 /// The CPU-heavy half, in parallel: blend the steps around the frame's time, bound them,
-/// and build the surfaces of the jellyfish a camera sees.
+/// and build the surfaces (CPU meshes) or pack the shapes (templates) of the jellyfish a
+/// camera sees.
 fn build_buffers(
     mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes, &GlobalTransform)>,
     cameras: Query<(&Camera, &Frustum)>,
@@ -51,21 +57,30 @@ fn build_buffers(
             let bounds = slice_bounds(&meshes.blended, &slice.species);
             meshes.bounds = Some(bounds);
             meshes.seen = seen(&frusta, &bounds, &transform.affine());
-            if !meshes.seen {
+            let templates = meshes.path == Some(SurfacePath::Templates);
+            // A template's slot is shaped once even unseen: it must never show another's.
+            if !(meshes.seen || templates && meshes.block.is_empty()) {
                 timings.add_meshing(start.elapsed());
                 return;
             }
-            let species: Species = settings.meshed(&slice.species);
+            let res = settings.resolution(&slice.species);
             let view = meshes.blended.view(sim.view().rest_bell);
-            match shape::build_into(
-                &mut meshes.buffers,
-                &view,
-                &species,
-                slice.seed,
-                meshes.blended.time as f32,
-            ) {
-                Ok(()) => meshes.dirty = true,
-                Err(e) => warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}"),
+            let (seed, time) = (slice.seed, meshes.blended.time as f32);
+            let built = if templates {
+                let JellyfishMeshes { packer, block, .. } = meshes;
+                let mut packed = std::mem::take(block);
+                packed.clear();
+                let result = packer.pack(&view, &slice.species, res, seed, time, &mut packed);
+                if result.is_ok() || block.is_empty() {
+                    *block = packed;
+                }
+                result
+            } else {
+                shape::build_at(&mut meshes.buffers, &view, &slice.species, res, seed, time)
+                    .map(|()| meshes.dirty = true)
+            };
+            if let Err(e) = built {
+                warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}");
             }
             timings.add_meshing(start.elapsed());
         });
@@ -115,7 +130,7 @@ fn write_meshes(
             }
             None if umbrella.vertex_count() > 0 => {
                 timings.add_mesh_bytes(bytes(umbrella));
-                let handle = assets.add(new_mesh(umbrella));
+                let handle = assets.add(new_mesh(umbrella, RenderAssetUsages::default()));
                 commands.entity(entity).insert(Mesh3d(handle.clone()));
                 meshes.umbrella = Some(handle);
             }
@@ -139,7 +154,7 @@ fn write_meshes(
             }
             _ if visible => {
                 timings.add_mesh_bytes(bytes(tentacles));
-                let handle = assets.add(new_mesh(tentacles));
+                let handle = assets.add(new_mesh(tentacles, RenderAssetUsages::default()));
                 let child = commands
                     .spawn((
                         JellyfishTentacles,
@@ -159,11 +174,8 @@ fn write_meshes(
     timings.add_meshing(start.elapsed());
 }
 
-fn new_mesh(b: &mut SurfaceBuffers) -> Mesh {
-    let mut mesh = Mesh::new(
-        PrimitiveTopology::TriangleList,
-        RenderAssetUsages::default(),
-    );
+pub(crate) fn new_mesh(b: &mut SurfaceBuffers, usage: RenderAssetUsages) -> Mesh {
+    let mut mesh = Mesh::new(PrimitiveTopology::TriangleList, usage);
     write(&mut mesh, b, true);
     mesh
 }

@@ -31,6 +31,7 @@ mod prepare;
 mod settings;
 mod steering;
 mod step;
+mod surface;
 mod tank;
 mod water;
 
@@ -41,8 +42,12 @@ pub use components::{
 pub use diagnostics::JellyfishDiagnostics;
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
 pub use prepare::NEW_SLICES_PER_FRAME;
-pub use settings::JellyfishSettings;
+pub use settings::{JellyfishSettings, SurfaceMode};
 pub use steering::{Steering, SteeringTarget};
+pub use surface::{
+    ShapeBuffers, SurfaceExtension, SurfaceMaterial, SurfaceMaterials, SurfacePath,
+    device_supports_templates,
+};
 pub use tank::{Impulse, TankWater};
 pub use water::{AmbientWater, SampledWater, WaterField};
 
@@ -88,6 +93,7 @@ impl Plugin for JellyfishPlugin {
                 step::plugin,
                 motion::plugin,
                 meshing::plugin,
+                surface::plugin,
             ))
             .configure_sets(
                 PreUpdate,

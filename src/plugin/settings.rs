@@ -1,6 +1,7 @@
 //! [`JellyfishSettings`]: how every jellyfish is drawn. Nothing here changes the physics:
 //! a slice's step, grid and numerics belong to its species.
 
+use crate::shape::Resolution;
 use crate::species::Species;
 use bevy::prelude::*;
 
@@ -10,28 +11,38 @@ use bevy::prelude::*;
 pub struct JellyfishSettings {
     /// Multiplies the species' mesh rings and segments (clamped to what validation allows).
     pub mesh_resolution_scale: f32,
+    /// Where surfaces are built: on the GPU from shared template meshes, or on the CPU.
+    pub surfaces: SurfaceMode,
 }
 
 impl Default for JellyfishSettings {
     fn default() -> Self {
         Self {
             mesh_resolution_scale: 1.0,
+            surfaces: SurfaceMode::Auto,
         }
     }
 }
 
+/// Where jellyfish surfaces are built (the picture is the same either way).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
+pub enum SurfaceMode {
+    /// Templates where the GPU can read storage buffers in its vertex shaders (and the app
+    /// renders), CPU meshes elsewhere (WebGL2, headless apps).
+    #[default]
+    Auto,
+    /// One template mesh per resolution shared by all; each jellyfish uploads a shape of a
+    /// few kilobytes a frame and the vertex shader builds its surface. Falls back to CPU
+    /// meshes, with a warning, on a device that cannot.
+    Templates,
+    /// Every jellyfish's meshes rebuilt on the CPU and re-uploaded each frame (~250 KB for
+    /// a moon jelly): the reference, and what a custom `StandardMaterial` needs.
+    CpuMeshes,
+}
+
 impl JellyfishSettings {
-    /// The species a mesh is built with: the slice's, with the resolution scaled.
-    pub fn meshed(&self, species: &Species) -> Species {
-        let mut s = species.clone();
-        let scale = if self.mesh_resolution_scale.is_finite() {
-            self.mesh_resolution_scale.max(0.0)
-        } else {
-            1.0
-        };
-        let scaled = |n: u32, lo: u32, hi: u32| ((n as f32 * scale).round() as u32).clamp(lo, hi);
-        s.mesh_rings = scaled(s.mesh_rings, 2, 256);
-        s.mesh_segments = scaled(s.mesh_segments, 3, 512);
-        s
+    /// The resolution a species is drawn at: its own, scaled by `mesh_resolution_scale`.
+    pub fn resolution(&self, species: &Species) -> Resolution {
+        Resolution::scaled(species, self.mesh_resolution_scale)
     }
 }

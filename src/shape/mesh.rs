@@ -10,12 +10,11 @@ use super::umbrella::{self, Column};
 use super::variation::Variation;
 use crate::sim::SliceView;
 use crate::species::Species;
-use noise::Perlin;
 use std::f32::consts::TAU;
 
 /// Mesh resolution, from the species. Clamped to the ranges `Species::validate` allows, so
 /// an unvalidated species still gives a well-formed mesh.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Resolution {
     /// Rings per umbrella surface from the apex to the margin.
     pub rings: usize,
@@ -26,10 +25,24 @@ pub struct Resolution {
 
 impl Resolution {
     pub fn of(species: &Species) -> Self {
-        let rings = species.mesh_rings.clamp(2, 256) as usize;
+        Self::scaled(species, 1.0)
+    }
+
+    /// The species' resolution with its rings and segments multiplied by `scale` (a
+    /// drawing setting), clamped to what validation allows.
+    pub fn scaled(species: &Species, scale: f32) -> Self {
+        let scale = if scale.is_finite() {
+            scale.max(0.0)
+        } else {
+            1.0
+        };
+        let scaled = |n: u32, lo: u32, hi: u32| {
+            ((n as f32 * scale).round() as usize).clamp(lo as usize, hi as usize)
+        };
+        let rings = scaled(species.mesh_rings, 2, 256);
         Self {
             rings,
-            segments: species.mesh_segments.clamp(3, 512) as usize,
+            segments: scaled(species.mesh_segments, 3, 512),
             tentacles: TentacleLayout {
                 // No length, no tubes (rather than a ring of zero-length ones).
                 count: if species.tentacle_length > 0.0 {
@@ -74,7 +87,6 @@ struct Scratch {
     columns: Vec<Column>,
     tentacles: TentacleScratch,
     noise: NoiseField,
-    perlin: Option<(u32, Perlin)>,
 }
 
 impl JellyMesh {
@@ -102,7 +114,7 @@ impl JellyMesh {
     }
 }
 
-/// Regenerates `mesh` from a slice, in place.
+/// Regenerates `mesh` from a slice, in place, at the species' resolution.
 ///
 /// On error the buffers keep the last good frame. Changing the species' resolution
 /// rebuilds the topology (and may reallocate) once.
@@ -113,8 +125,19 @@ pub fn build_into(
     seed: u32,
     time: f32,
 ) -> Result<(), ShapeError> {
+    build_at(mesh, view, species, Resolution::of(species), seed, time)
+}
+
+/// [`build_into`] at a given resolution.
+pub fn build_at(
+    mesh: &mut JellyMesh,
+    view: &SliceView,
+    species: &Species,
+    res: Resolution,
+    seed: u32,
+    time: f32,
+) -> Result<(), ShapeError> {
     check(view, species, time)?;
-    let res = Resolution::of(species);
     let s = &mut mesh.scratch;
     if mesh.resolution != Some(res) {
         umbrella::write_topology(res.rings, res.segments, &mut mesh.umbrella);
@@ -126,15 +149,7 @@ pub fn build_into(
         );
         mesh.resolution = Some(res);
     }
-    let perlin = match s.perlin {
-        Some((cached, p)) if cached == seed => p,
-        _ => {
-            let p = Perlin::new(seed);
-            s.perlin = Some((seed, p));
-            p
-        }
-    };
-    let variation = Variation::new(species, perlin, time);
+    let variation = Variation::new(species, seed, time);
     s.noise.update(
         &variation,
         NoiseKey {

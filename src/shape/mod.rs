@@ -19,6 +19,8 @@ pub mod mesh;
 pub mod noise_field;
 mod normals;
 pub mod outline;
+pub mod packed;
+pub mod perlin;
 pub mod profile;
 pub mod spline;
 pub mod tentacles;
@@ -30,5 +32,5 @@ mod tests;
 
 pub use buffers::SurfaceBuffers;
 pub use input::ShapeError;
-pub use mesh::{JellyMesh, Resolution, build_into};
+pub use mesh::{JellyMesh, Resolution, build_at, build_into};
 pub use outline::SliceOutline;

@@ -5,7 +5,8 @@
 //! normal is the cross product of its central differences around and along that sheet:
 //! smooth across the seam (rings wrap) and over the margin, and a quarter of the cost of
 //! summing triangle normals, which was the largest part of a frame. Where the differences
-//! vanish (a collapsed slice) the analytic normal already in the buffer stays.
+//! vanish (a collapsed slice), and at the two apexes, the analytic normal already in the
+//! buffer stays. The template meshes' vertex shader computes the same differences.
 
 use super::buffers::SurfaceBuffers;
 use super::umbrella::vertex;
@@ -37,16 +38,8 @@ pub(crate) fn grid_normals(buf: &mut SurfaceBuffers, rings: usize, segments: usi
         // The seam twin (σ = 2π) shares the first vertex's normal.
         normals[here + segments] = normals[here];
     }
-    // The apexes: the sums of their fan triangles' normals.
-    let ((ex, _), (first, _)) = (row(-1), row(0));
-    let ((sub, _), (last, _)) = (row(sheet), row(sheet - 1));
-    let (mut n_ex, mut n_sub) = (Vec3::ZERO, Vec3::ZERO);
-    for j in 0..segments {
-        n_ex += (p(first + j + 1) - p(ex)).cross(p(first + j) - p(ex));
-        n_sub += (p(last + j) - p(sub)).cross(p(last + j + 1) - p(sub));
-    }
-    keep(normals, ex, n_ex);
-    keep(normals, sub, n_sub);
+    // The apexes keep the analytic normal (the swept mesoglea normal, along the axis):
+    // where every ring meets, the grid has no "around".
 }
 
 /// Writes `n` normalised at `i`, unless it has no direction: then the normal there stays.

@@ -16,7 +16,7 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
 /// Tube and count of the tentacle surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct TentacleLayout {
     pub count: usize,
     pub sides: usize,
@@ -99,13 +99,46 @@ pub struct TentacleScratch {
     around: Vec<(f32, f32)>,
 }
 
+/// The discs a tentacle ring sweeps, root to tip, from the slice's two chains (an empty
+/// chain hangs from its margin point `roots` with zero length), and the aperture's disc.
+pub fn chain_discs(
+    layout: &TentacleLayout,
+    chains: [&[Vec2]; 2],
+    roots: [Vec2; 2],
+    margin: &RingPair,
+    out: &mut Vec<Disc>,
+) -> Disc {
+    let chains = [0, 1].map(|side| {
+        if chains[side].is_empty() {
+            std::slice::from_ref(&roots[side])
+        } else {
+            chains[side]
+        }
+    });
+    let aperture = Disc::through(margin.subumbrella[0], margin.subumbrella[1], Vec2::X);
+    out.clear();
+    let mut radial = aperture.radial;
+    for m in 0..layout.points {
+        let at = |c: &[Vec2]| catmull_rom(c, fraction(layout, m) * (c.len() - 1) as f32);
+        let disc = Disc::through(at(chains[0]), at(chains[1]), radial);
+        radial = disc.radial;
+        out.push(disc);
+    }
+    aperture
+}
+
+/// How far along its tentacle ring `m` lies, 0 at the root, 1 at the tip.
+fn fraction(layout: &TentacleLayout, m: usize) -> f32 {
+    m as f32 / (layout.points - 1) as f32
+}
+
 /// Writes positions and (analytic, tube-radial) normals in place.
 ///
-/// `chains` are the slice's left and right chains; an empty one hangs from its margin point
-/// `roots` with zero length. `noise` holds QP per [`noise_samples`]. Each centreline moves
-/// with the margin above it (structural and unstructured variation along the margin's
-/// mesoglea normal), the noise running on down the tentacle; a second channel, zero at the
-/// root, sways it sideways, so tentacles wave across the view as well as along it.
+/// `chains` are the slice's left and right chains (see [`chain_discs`]). `noise` holds QP
+/// per [`noise_samples`]. Each centreline moves with the margin above it (structural and
+/// unstructured variation along the margin's mesoglea normal), the noise running on down
+/// the tentacle; a second channel, zero at the root, sways it sideways, so tentacles wave
+/// across the view as well as along it.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn write_surface(
     layout: &TentacleLayout,
@@ -119,24 +152,8 @@ pub(crate) fn write_surface(
     s: &mut TentacleScratch,
 ) {
     let l = layout;
-    let chains = [0, 1].map(|side| {
-        if chains[side].is_empty() {
-            std::slice::from_ref(&roots[side])
-        } else {
-            chains[side]
-        }
-    });
-    let aperture = Disc::through(margin.subumbrella[0], margin.subumbrella[1], Vec2::X);
-    let fraction = |m: usize| m as f32 / (l.points - 1) as f32;
+    let aperture = chain_discs(l, chains, roots, margin, &mut s.discs);
     angles(l.sides, &mut s.around);
-    s.discs.clear();
-    let mut radial = aperture.radial;
-    for m in 0..l.points {
-        let at = |c: &[Vec2]| catmull_rom(c, fraction(m) * (c.len() - 1) as f32);
-        let disc = Disc::through(at(chains[0]), at(chains[1]), radial);
-        radial = disc.radial;
-        s.discs.push(disc);
-    }
     for t in 0..l.count {
         let sigma = TAU * t as f32 / l.count as f32;
         let (sin, cos) = sigma.sin_cos();
@@ -148,17 +165,14 @@ pub(crate) fn write_surface(
         s.centre.clear();
         for (m, (disc, qp)) in s.discs.iter().zip(noise.chunks_exact(2)).enumerate() {
             let c = lobe + variation.unstructured_with(1.0, qp[0]);
-            let side = variation.unstructured_with(fraction(m), qp[1]);
+            let side = variation.unstructured_with(fraction(l, m), qp[1]);
             s.centre.push(disc.point(cs) + normal * c + sideways * side);
         }
         tangents(&s.centre, &mut s.tangent);
-        let t0 = s.tangent[0];
-        let q = aperture.direction(cs);
-        let mut n = (q - q.dot(t0) * t0).normalize_or(t0.any_orthonormal_vector());
+        let outward = aperture.direction(cs);
         for m in 0..l.points {
             let tm = s.tangent[m];
-            // Parallel transport: the previous frame turned onto the new tangent, no twist.
-            n = (n - n.dot(tm) * tm).normalize_or(tm.any_orthonormal_vector());
+            let n = across(outward, tm);
             let b = tm.cross(n);
             for (i, &(cp, sp)) in s.around.iter().enumerate() {
                 let out = cp * n + sp * b;
@@ -171,23 +185,43 @@ pub(crate) fn write_surface(
             buf.normals[seam] = buf.normals[first];
         }
         let last = l.points - 1;
-        let tip = s.tangent[last];
-        buf.positions[l.root(t)] = (s.centre[0] - radius * t0).to_array();
-        buf.normals[l.root(t)] = (-t0).to_array();
+        let (root, tip) = (s.tangent[0], s.tangent[last]);
+        buf.positions[l.root(t)] = (s.centre[0] - radius * root).to_array();
+        buf.normals[l.root(t)] = (-root).to_array();
         buf.positions[l.tip(t)] = (s.centre[last] + radius * tip).to_array();
         buf.normals[l.tip(t)] = tip.to_array();
     }
 }
 
-/// Unit tangents of a polyline by central differences; where it has no length the
-/// previous tangent (or straight down, -y) stands in.
+/// The tube's frame at a ring: `outward` (the aperture's radial direction at the
+/// tentacle) made perpendicular to the tangent, so the tube's seam faces out from the
+/// bell along its whole length. Each ring's frame depends on that ring alone, so the GPU
+/// builds any vertex without walking the tentacle; where the tentacle runs along
+/// `outward` a fixed perpendicular stands in.
+pub fn across(outward: Vec3, tangent: Vec3) -> Vec3 {
+    let n = outward - outward.dot(tangent) * tangent;
+    if n.length_squared() > 1e-12 {
+        n.normalize()
+    } else {
+        perpendicular(tangent)
+    }
+}
+
+/// A unit vector perpendicular to the unit vector `v`.
+pub fn perpendicular(v: Vec3) -> Vec3 {
+    let other = if v.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+    v.cross(other).normalize()
+}
+
+/// Unit tangent at point `i` of a polyline by central differences; where it has no
+/// length, straight down (-y), the way a limp tentacle hangs.
+pub fn tangent(points: &[Vec3], i: usize) -> Vec3 {
+    let n = points.len();
+    let d = points[(i + 1).min(n - 1)] - points[i.saturating_sub(1)];
+    d.normalize_or(Vec3::NEG_Y)
+}
+
 fn tangents(points: &[Vec3], out: &mut Vec<Vec3>) {
     out.clear();
-    let n = points.len();
-    let mut last = Vec3::NEG_Y;
-    for i in 0..n {
-        let d = points[(i + 1).min(n - 1)] - points[i.saturating_sub(1)];
-        last = d.normalize_or(last);
-        out.push(last);
-    }
+    out.extend((0..points.len()).map(|i| tangent(points, i)));
 }

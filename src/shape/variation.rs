@@ -4,8 +4,8 @@
 //! Amplitudes are the species' scales times `thickness` (paper: α_str = 0.375·ϑ,
 //! α_unstr = 2.25·ϑ, compression up to (1.51 − 1.36)·ϑ).
 
+use super::perlin::perlin4;
 use crate::species::Species;
-use noise::{NoiseFn, Perlin};
 use std::f32::consts::TAU;
 
 /// Latitude below which structural and compression variation fade in. Those depend on σ
@@ -15,35 +15,35 @@ pub const APEX_FADE: f32 = 0.25;
 /// The three variations for one individual at one time.
 #[derive(Clone, Copy, Debug)]
 pub struct Variation {
-    perlin: Perlin,
+    seed: u32,
     structural: f32,
     structural_frequency: f32,
     structural_abs: bool,
     compression: f32,
     compression_frequency: f32,
     unstructured: f32,
-    lat_frequency: f64,
+    lat_frequency: f32,
     /// Radius of the circle the longitude is wrapped on in noise space: `f_lon / 2π`, so
     /// one turn spans `f_lon` noise units (the paper's `8·d_j`) and σ = 0 meets σ = 2π.
-    lon_radius: f64,
+    lon_radius: f32,
     /// `f_t · t`: the noise field's fourth coordinate.
     time: f64,
 }
 
 impl Variation {
-    /// `perlin` carries the individual's seed (`Perlin::new(seed)`); `time` in seconds.
-    pub fn new(species: &Species, perlin: Perlin, time: f32) -> Self {
+    /// `seed` picks the individual's noise; `time` in seconds.
+    pub fn new(species: &Species, seed: u32, time: f32) -> Self {
         let t = species.thickness;
         Self {
-            perlin,
+            seed,
             structural: species.structural_scale * t,
             structural_frequency: species.structural_frequency,
             structural_abs: species.structural_abs,
             compression: species.compression_scale * t,
             compression_frequency: species.compression_frequency,
             unstructured: species.unstructured_scale * t,
-            lat_frequency: species.noise_frequency_lat as f64,
-            lon_radius: species.noise_frequency_lon as f64 / TAU as f64,
+            lat_frequency: species.noise_frequency_lat,
+            lon_radius: species.noise_frequency_lon / TAU,
             time: species.noise_frequency_time as f64 * time as f64,
         }
     }
@@ -84,12 +84,15 @@ impl Variation {
 
     /// The noise field at time coordinate `tau` (noise units, `f_t·t`).
     pub fn noise_at(&self, lat: f32, (cos, sin): (f32, f32), tau: f64) -> f32 {
-        self.perlin.get([
-            self.lat_frequency * lat as f64,
-            self.lon_radius * cos as f64,
-            self.lon_radius * sin as f64,
-            tau,
-        ]) as f32
+        perlin4(
+            self.seed,
+            [
+                self.lat_frequency * lat,
+                self.lon_radius * cos,
+                self.lon_radius * sin,
+                tau as f32,
+            ],
+        )
     }
 
     /// The noise's time coordinate `f_t·t`.
@@ -114,7 +117,7 @@ mod tests {
     use super::*;
 
     fn variation(seed: u32, time: f32) -> Variation {
-        Variation::new(&Species::aurelia(), Perlin::new(seed), time)
+        Variation::new(&Species::aurelia(), seed, time)
     }
 
     #[test]

@@ -1,0 +1,179 @@
+//! Puts each jellyfish on its drawing path: the shared template meshes and a slot, or its
+//! own CPU meshes; moves it when the path or its resolution changes.
+
+use super::SurfacePath;
+use super::material::SurfaceMaterial;
+use super::upload::SurfaceSlots;
+use crate::plugin::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
+use crate::plugin::material::JellyfishMaterials;
+use crate::plugin::meshing::new_mesh;
+use crate::plugin::settings::JellyfishSettings;
+use crate::shape::{JellyMesh, Resolution, SliceOutline, build_at};
+use bevy::asset::RenderAssetUsages;
+use bevy::camera::visibility::NoAutoAabb;
+use bevy::mesh::MeshTag;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+
+/// The template meshes, one pair per resolution, shared by every species drawn at it.
+#[derive(Resource, Default)]
+pub(crate) struct Templates {
+    by_resolution: HashMap<Resolution, TemplateMeshes>,
+}
+
+#[derive(Clone)]
+struct TemplateMeshes {
+    umbrella: Handle<Mesh>,
+    /// None for a resolution without tentacles.
+    tentacles: Option<Handle<Mesh>>,
+}
+
+impl Templates {
+    /// The meshes for `res`, made the first time from the species' rest shape (the
+    /// shader ignores the template's positions and normals; they make a sensible rest
+    /// mesh for tools that read it).
+    fn get(
+        &mut self,
+        res: Resolution,
+        slice: &JellyfishSlice,
+        meshes: &mut Assets<Mesh>,
+    ) -> TemplateMeshes {
+        self.by_resolution
+            .entry(res)
+            .or_insert_with(|| {
+                let rest = SliceOutline::rest(&slice.species, 25, 12);
+                let mut mesh = JellyMesh::new();
+                build_at(&mut mesh, &rest.view(), &slice.species, res, 0, 0.0)
+                    .expect("a species' rest outline always meshes");
+                let usage = RenderAssetUsages::default();
+                TemplateMeshes {
+                    umbrella: meshes.add(new_mesh(&mut mesh.umbrella, usage)),
+                    tentacles: (mesh.tentacles.vertex_count() > 0)
+                        .then(|| meshes.add(new_mesh(&mut mesh.tentacles, usage))),
+                }
+            })
+            .clone()
+    }
+}
+
+/// The tag of a jellyfish's part: its slot, and 0 for the umbrella, 1 for the tentacles.
+fn tag(slot: u32, part: u32) -> MeshTag {
+    MeshTag(slot << 1 | part)
+}
+
+/// Runs before the meshes are built each frame.
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub(crate) fn set_up(
+    mut commands: Commands,
+    path: Option<Res<SurfacePath>>,
+    settings: Res<JellyfishSettings>,
+    mut jellyfish: Query<(
+        Entity,
+        &JellyfishSlice,
+        &mut JellyfishMeshes,
+        Option<&MeshMaterial3d<StandardMaterial>>,
+    )>,
+    mut templates: ResMut<Templates>,
+    mut slots: ResMut<SurfaceSlots>,
+    mut removed: RemovedComponents<JellyfishMeshes>,
+    own: Res<JellyfishMaterials>,
+    mut assets: ResMut<Assets<Mesh>>,
+) {
+    for entity in removed.read() {
+        slots.give_back(entity);
+    }
+    let global = path.map_or(SurfacePath::CpuMeshes, |p| *p);
+    for (entity, slice, mut meshes, material) in &mut jellyfish {
+        if slice.sim().is_none() {
+            continue;
+        }
+        // A material of the game's own is a StandardMaterial: it needs real meshes.
+        let custom = material.is_some_and(|m| !own.is_ours(&m.0));
+        let wanted = if custom {
+            SurfacePath::CpuMeshes
+        } else {
+            global
+        };
+        if meshes.path != Some(wanted) {
+            tear_down(
+                &mut commands,
+                entity,
+                &mut meshes,
+                &mut slots,
+                material,
+                &own,
+            );
+            meshes.path = Some(wanted);
+        }
+        if wanted != SurfacePath::Templates {
+            continue;
+        }
+        let res = settings.resolution(&slice.species);
+        if meshes.written == Some(res) {
+            continue;
+        }
+        meshes.written = Some(res);
+        let slot = slots.take(entity);
+        meshes.slot = Some(slot);
+        meshes.block.clear();
+        let template = templates.get(res, slice, &mut assets);
+        commands
+            .entity(entity)
+            .insert((Mesh3d(template.umbrella.clone()), tag(slot, 0)));
+        meshes.umbrella = Some(template.umbrella);
+        meshes.tentacles = template.tentacles.clone();
+        match (template.tentacles, meshes.tentacle_entity) {
+            (Some(mesh), Some(child)) => {
+                commands
+                    .entity(child)
+                    .insert((Mesh3d(mesh), tag(slot, 1), Visibility::Inherited));
+            }
+            (Some(mesh), None) => {
+                let child = commands
+                    .spawn((
+                        JellyfishTentacles,
+                        Mesh3d(mesh),
+                        tag(slot, 1),
+                        Transform::default(),
+                        meshes.bounds.unwrap_or_default(),
+                        NoAutoAabb,
+                        ChildOf(entity),
+                    ))
+                    .id();
+                meshes.tentacle_entity = Some(child);
+            }
+            (None, Some(child)) => {
+                commands.entity(child).insert(Visibility::Hidden);
+            }
+            (None, None) => {}
+        }
+    }
+}
+
+/// Undoes either path's set-up, keeping a material of the game's own.
+fn tear_down(
+    commands: &mut Commands,
+    entity: Entity,
+    meshes: &mut JellyfishMeshes,
+    slots: &mut SurfaceSlots,
+    material: Option<&MeshMaterial3d<StandardMaterial>>,
+    own: &JellyfishMaterials,
+) {
+    if meshes.path.is_none() {
+        return;
+    }
+    let mut e = commands.entity(entity);
+    e.remove::<(Mesh3d, MeshTag, MeshMaterial3d<SurfaceMaterial>)>();
+    if material.is_some_and(|m| own.is_ours(&m.0)) {
+        e.remove::<MeshMaterial3d<StandardMaterial>>();
+    }
+    if let Some(child) = meshes.tentacle_entity.take() {
+        commands.entity(child).despawn();
+    }
+    slots.give_back(entity);
+    *meshes = JellyfishMeshes {
+        blended: std::mem::take(&mut meshes.blended),
+        bounds: meshes.bounds,
+        ..default()
+    };
+}

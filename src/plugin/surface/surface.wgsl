@@ -1,0 +1,422 @@
+// The jellyfish surface built on the GPU from a template mesh and a packed shape block.
+//
+// A template mesh (one per resolution) carries only topology and UVs; each instance's
+// `MeshTag` picks its shape block (tag >> 1) and its part (tag & 1: 0 the umbrella, 1 the
+// tentacles), and this shader turns the vertex's index into its position and normal. It
+// mirrors `shape::packed` (`umbrella_vertex`, `tentacle_vertex`) and `shape::perlin` line
+// for line: change one, change the other (the Rust mirror is tested against the CPU mesh).
+// The same file serves the forward and the prepass/shadow pipelines (PREPASS_PIPELINE).
+
+#import bevy_pbr::{
+    mesh_bindings::mesh,
+    mesh_functions,
+    view_transformations::position_world_to_clip,
+}
+#ifdef PREPASS_PIPELINE
+#import bevy_pbr::prepass_io::VertexOutput
+#else
+#import bevy_pbr::forward_io::VertexOutput
+#endif
+
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> offsets: array<u32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(101) var<storage, read> shapes: array<f32>;
+
+// Block layout: shape::packed's H_* constants.
+const H_SEED: u32 = 0u;
+const H_RINGS: u32 = 1u;
+const H_SEGMENTS: u32 = 2u;
+const H_TENTACLES: u32 = 3u;
+const H_SIDES: u32 = 4u;
+const H_POINTS: u32 = 5u;
+const H_STRUCTURAL: u32 = 6u;
+const H_STRUCTURAL_FREQUENCY: u32 = 7u;
+const H_STRUCTURAL_ABS: u32 = 8u;
+const H_COMPRESSION: u32 = 9u;
+const H_COMPRESSION_FREQUENCY: u32 = 10u;
+const H_UNSTRUCTURED: u32 = 11u;
+const H_LAT_FREQUENCY: u32 = 12u;
+const H_LON_RADIUS: u32 = 13u;
+const H_TAU: u32 = 14u;
+const H_TENTACLE_RADIUS: u32 = 15u;
+const H_APERTURE: u32 = 16u;
+const H_MARGIN_NORMALS: u32 = 21u;
+const HEADER: u32 = 25u;
+const DISC: u32 = 5u;
+const RING: u32 = 16u;
+// tentacles::SIDEWAYS and variation::APEX_FADE.
+const SIDEWAYS: f32 = 7.3;
+const APEX_FADE: f32 = 0.25;
+const TAU: f32 = 6.28318530717958647692;
+
+struct Vertex {
+    @builtin(instance_index) instance_index: u32,
+    @builtin(vertex_index) index: u32,
+#ifdef VERTEX_UVS_A
+#ifdef PREPASS_PIPELINE
+    @location(1) uv: vec2<f32>,
+#else
+    @location(2) uv: vec2<f32>,
+#endif
+#endif
+};
+
+struct Surface {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+};
+
+struct Disc {
+    centre: vec3<f32>,
+    radius: f32,
+    radial: vec2<f32>,
+};
+
+// ---- shape::perlin ----
+
+fn pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn lattice_hash(seed: u32, corner: vec4<i32>) -> u32 {
+    var h = pcg(seed ^ 0x9E3779B9u);
+    h = pcg(h ^ bitcast<u32>(corner.x));
+    h = pcg(h ^ bitcast<u32>(corner.y));
+    h = pcg(h ^ bitcast<u32>(corner.z));
+    h = pcg(h ^ bitcast<u32>(corner.w));
+    return h;
+}
+
+fn gradient(h: u32, d_in: vec4<f32>) -> f32 {
+    var d = d_in;
+    let zero = (h >> 3u) & 3u;
+    var sum = 0.0;
+    var sign_bit = 0u;
+    for (var i = 0u; i < 4u; i++) {
+        if i == zero {
+            continue;
+        }
+        if ((h >> sign_bit) & 1u) == 1u {
+            sum -= d[i];
+        } else {
+            sum += d[i];
+        }
+        sign_bit += 1u;
+    }
+    return sum;
+}
+
+fn fade(t: vec4<f32>) -> vec4<f32> {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+fn perlin4(seed: u32, p: vec4<f32>) -> f32 {
+    let cell = floor(p);
+    let corner = vec4<i32>(cell);
+    let d = p - cell;
+    var f = fade(d);
+    var sum = 0.0;
+    for (var c = 0u; c < 16u; c++) {
+        var lattice = corner;
+        var offset = d;
+        var weight = 1.0;
+        for (var i = 0u; i < 4u; i++) {
+            if ((c >> i) & 1u) == 1u {
+                lattice[i] += 1;
+                offset[i] -= 1.0;
+                weight *= f[i];
+            } else {
+                weight *= 1.0 - f[i];
+            }
+        }
+        sum += weight * gradient(lattice_hash(seed, lattice), offset);
+    }
+    return clamp(sum, -1.0, 1.0);
+}
+
+// ---- shape::discs ----
+
+fn read_disc(at: u32) -> Disc {
+    return Disc(
+        vec3(shapes[at], shapes[at + 1u], 0.0),
+        shapes[at + 2u],
+        vec2(shapes[at + 3u], shapes[at + 4u]),
+    );
+}
+
+fn perp(v: vec2<f32>) -> vec2<f32> {
+    return vec2(-v.y, v.x);
+}
+
+fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let length_squared = dot(v, v);
+    if length_squared > 0.0 {
+        return v * inverseSqrt(length_squared);
+    }
+    return fallback;
+}
+
+fn disc_axis(d: Disc) -> vec3<f32> {
+    return vec3(perp(d.radial), 0.0);
+}
+
+fn disc_direction(d: Disc, cs: vec2<f32>) -> vec3<f32> {
+    return vec3(d.radial.x * cs.x, d.radial.y * cs.x, cs.y);
+}
+
+fn disc_point(d: Disc, cs: vec2<f32>) -> vec3<f32> {
+    return d.centre + d.radius * disc_direction(d, cs);
+}
+
+// The left and right slice normals at `at` swept to angle σ = (cos, sin).
+fn disc_normal(d: Disc, at: u32, cs: vec2<f32>) -> vec3<f32> {
+    let left = vec2(shapes[at], shapes[at + 1u]);
+    let right = vec2(shapes[at + 2u], shapes[at + 3u]);
+    let a = perp(d.radial);
+    let right_radial = dot(right, d.radial);
+    let right_axial = dot(right, a);
+    let left_radial = -dot(left, d.radial);
+    let left_axial = dot(left, a);
+    let w = 0.5 * (1.0 - cs.x);
+    let radial = right_radial + (left_radial - right_radial) * w;
+    let axial = right_axial + (left_axial - right_axial) * w;
+    return normalize_or(radial * disc_direction(d, cs) + axial * disc_axis(d), disc_axis(d));
+}
+
+// ---- shape::packed ----
+
+fn count(base: u32, at: u32) -> u32 {
+    return bitcast<u32>(shapes[base + at]);
+}
+
+fn noise(base: u32, lat: f32, cs: vec2<f32>) -> f32 {
+    let r = shapes[base + H_LON_RADIUS];
+    return perlin4(
+        count(base, H_SEED),
+        vec4(shapes[base + H_LAT_FREQUENCY] * lat, r * cs.x, r * cs.y, shapes[base + H_TAU]),
+    );
+}
+
+fn lobe(base: u32, sigma: f32) -> f32 {
+    var s = sin(shapes[base + H_STRUCTURAL_FREQUENCY] * sigma);
+    if shapes[base + H_STRUCTURAL_ABS] > 0.5 {
+        s = abs(s);
+    }
+    return shapes[base + H_STRUCTURAL] * s;
+}
+
+fn ripple(base: u32, sigma: f32) -> f32 {
+    return shapes[base + H_COMPRESSION] * 0.5
+        * (1.0 + sin(shapes[base + H_COMPRESSION_FREQUENCY] * sigma));
+}
+
+fn apex_fade(latitude: f32) -> f32 {
+    let x = clamp(latitude / APEX_FADE, 0.0, 1.0);
+    return x * x * (3.0 - 2.0 * x);
+}
+
+fn ring_at(base: u32, k: u32) -> u32 {
+    return base + HEADER + k * RING;
+}
+
+fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
+    let at = ring_at(base, k);
+    let sub = read_disc(at);
+    let ex = read_disc(at + DISC);
+    let latitude = shapes[at + 2u * DISC + 4u];
+    let contraction = shapes[at + 2u * DISC + 5u];
+    var side = 1.0;
+    if surface == 1u {
+        side = -1.0;
+    }
+    if k == 0u {
+        let n = disc_normal(sub, at + 2u * DISC, vec2(1.0, 0.0));
+        var centre = sub.centre;
+        if surface == 0u {
+            centre = ex.centre;
+        }
+        return Surface(centre, n * side);
+    }
+    let segments = count(base, H_SEGMENTS);
+    let sigma = TAU * f32(j % segments) / f32(segments);
+    let cs = vec2(cos(sigma), sin(sigma));
+    let n = disc_normal(sub, at + 2u * DISC, cs);
+    let fade = apex_fade(latitude);
+    let shared_offset = lobe(base, sigma) * fade
+        + shapes[base + H_UNSTRUCTURED] * latitude * noise(base, latitude, cs);
+    var position: vec3<f32>;
+    if surface == 0u {
+        position = disc_point(ex, cs) + n * (shared_offset + ripple(base, sigma) * fade * contraction);
+    } else {
+        position = disc_point(sub, cs) + n * shared_offset;
+    }
+    return Surface(position, n * side);
+}
+
+// Sheet ring l (-1 the exumbrellar apex ... 2·rings the subumbrellar apex) at column j.
+fn sheet_point(base: u32, l: i32, j: u32) -> vec3<f32> {
+    let r = i32(count(base, H_RINGS));
+    if l < 0 {
+        return umbrella_point(base, 0u, 0u, j).position;
+    }
+    if l >= 2 * r {
+        return umbrella_point(base, 1u, 0u, j).position;
+    }
+    if l < r {
+        return umbrella_point(base, 0u, u32(l + 1), j).position;
+    }
+    return umbrella_point(base, 1u, u32(2 * r - l), j).position;
+}
+
+fn umbrella_vertex(base: u32, index: u32) -> Surface {
+    let rings = count(base, H_RINGS);
+    let segments = count(base, H_SEGMENTS);
+    let surface_len = 1u + rings * (segments + 1u);
+    let surface = index / surface_len;
+    let r = index % surface_len;
+    if r == 0u {
+        return umbrella_point(base, surface, 0u, 0u);
+    }
+    let k = 1u + (r - 1u) / (segments + 1u);
+    let j = (r - 1u) % (segments + 1u);
+    let here = umbrella_point(base, surface, k, j);
+    var l = i32(k) - 1;
+    if surface == 1u {
+        l = 2 * i32(rings) - i32(k);
+    }
+    let around = sheet_point(base, l, j + 1u) - sheet_point(base, l, j + segments - 1u);
+    let along = sheet_point(base, l + 1, j) - sheet_point(base, l - 1, j);
+    let normal = cross(around, along);
+    var out = here;
+    if dot(normal, normal) > 0.0 {
+        out.normal = normalize(normal);
+    }
+    return out;
+}
+
+fn tentacle_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
+    let count_t = count(base, H_TENTACLES);
+    let points = count(base, H_POINTS);
+    let sigma = TAU * f32(t) / f32(count_t);
+    let cs = vec2(cos(sigma), sin(sigma));
+    let aperture = read_disc(base + H_APERTURE);
+    let normal = disc_normal(aperture, base + H_MARGIN_NORMALS, cs);
+    let sideways = disc_direction(aperture, vec2(-cs.y, cs.x));
+    let fraction = f32(m) / f32(points - 1u);
+    let lat = 1.0 + fraction;
+    let amplitude = shapes[base + H_UNSTRUCTURED];
+    let along = lobe(base, sigma) + amplitude * noise(base, lat, cs);
+    let side = amplitude * fraction * noise(base, lat + SIDEWAYS, cs);
+    let disc = read_disc(ring_at(base, count(base, H_RINGS) + 1u) + m * DISC);
+    return disc_point(disc, cs) + normal * along + sideways * side;
+}
+
+// tentacles::across and tentacles::perpendicular.
+fn across(outward: vec3<f32>, tangent: vec3<f32>) -> vec3<f32> {
+    let n = outward - dot(outward, tangent) * tangent;
+    if dot(n, n) > 1e-12 {
+        return normalize(n);
+    }
+    var other = vec3(0.0, 1.0, 0.0);
+    if abs(tangent.x) < 0.9 {
+        other = vec3(1.0, 0.0, 0.0);
+    }
+    return normalize(cross(tangent, other));
+}
+
+fn tentacle_vertex(base: u32, index: u32) -> Surface {
+    let count_t = count(base, H_TENTACLES);
+    let sides = count(base, H_SIDES);
+    let points = count(base, H_POINTS);
+    let per = 2u + points * (sides + 1u);
+    let t = index / per;
+    let r = index % per;
+    let last = points - 1u;
+    var m = 0u;
+    if r == per - 1u {
+        m = last;
+    } else if r > 0u {
+        m = (r - 1u) / (sides + 1u);
+    }
+    let centre = tentacle_centre(base, t, m);
+    let tangent = normalize_or(
+        tentacle_centre(base, t, min(m + 1u, last)) - tentacle_centre(base, t, max(m, 1u) - 1u),
+        vec3(0.0, -1.0, 0.0),
+    );
+    let radius = shapes[base + H_TENTACLE_RADIUS];
+    if r == 0u {
+        return Surface(centre - radius * tangent, -tangent);
+    }
+    if r == per - 1u {
+        return Surface(centre + radius * tangent, tangent);
+    }
+    let i = (r - 1u) % (sides + 1u);
+    let sigma = TAU * f32(t) / f32(count_t);
+    let outward = disc_direction(read_disc(base + H_APERTURE), vec2(cos(sigma), sin(sigma)));
+    let n = across(outward, tangent);
+    let phi = TAU * f32(i % sides) / f32(sides);
+    let out = cos(phi) * n + sin(phi) * cross(tangent, n);
+    return Surface(centre + radius * out, out);
+}
+
+@vertex
+fn vertex(vertex: Vertex) -> VertexOutput {
+    let tag = mesh_functions::get_tag(vertex.instance_index);
+    let base = offsets[tag >> 1u];
+    let local = vertex.index - mesh[vertex.instance_index].first_vertex_index;
+    var surface: Surface;
+    if (tag & 1u) == 0u {
+        surface = umbrella_vertex(base, local);
+    } else {
+        surface = tentacle_vertex(base, local);
+    }
+
+    var out: VertexOutput;
+    let world_from_local = mesh_functions::get_world_from_local(vertex.instance_index);
+    out.world_position = mesh_functions::mesh_position_local_to_world(
+        world_from_local,
+        vec4(surface.position, 1.0),
+    );
+    out.position = position_world_to_clip(out.world_position.xyz);
+
+#ifdef PREPASS_PIPELINE
+#ifdef UNCLIPPED_DEPTH_ORTHO_EMULATION
+    out.unclipped_depth = out.position.z;
+    out.position.z = min(out.position.z, 1.0);
+#endif
+#ifdef NORMAL_PREPASS_OR_DEFERRED_PREPASS
+    out.world_normal = mesh_functions::mesh_normal_local_to_world(
+        surface.normal,
+        vertex.instance_index,
+    );
+#endif
+#ifdef MOTION_VECTOR_PREPASS
+    // The previous transform with this frame's shape: motion vectors see the swimming,
+    // not the pulsing.
+    out.previous_world_position = mesh_functions::mesh_position_local_to_world(
+        mesh_functions::get_previous_world_from_local(vertex.instance_index),
+        vec4(surface.position, 1.0),
+    );
+#endif
+#else
+    out.world_normal = mesh_functions::mesh_normal_local_to_world(
+        surface.normal,
+        vertex.instance_index,
+    );
+#endif
+
+#ifdef VERTEX_UVS_A
+    out.uv = vertex.uv;
+#endif
+#ifdef VERTEX_OUTPUT_INSTANCE_INDEX
+    out.instance_index = vertex.instance_index;
+#endif
+#ifdef VISIBILITY_RANGE_DITHER
+    out.visibility_range_dither = mesh_functions::get_visibility_range_dither_level(
+        vertex.instance_index,
+        world_from_local[3],
+    );
+#endif
+    return out;
+}

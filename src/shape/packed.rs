@@ -1,0 +1,432 @@
+//! A jellyfish's shape in a few kilobytes: what a template mesh's vertex shader builds the
+//! surface from.
+//!
+//! The full surface is thousands of vertices; what makes it is much less: one disc pair per
+//! ring of the [`Profile`], one disc per ring of the tentacles, the variation's amplitudes
+//! and the individual's seed. [`ShapePacker::pack`] writes that block of `f32`s; the
+//! vertex shader (`plugin/surface.wgsl`) turns a template vertex's index into its position
+//! and normal from it. [`umbrella_vertex`] and [`tentacle_vertex`] are the same functions
+//! on the CPU, line for line, so the GPU's arithmetic is tested against [`build_into`]
+//! without a GPU.
+//!
+//! Block layout (`f32` offsets; counts stored as `u32` bits): the header (`H_*`), then
+//! `rings + 1` rings of [`RING`] values (subumbrella disc, exumbrella disc, the two
+//! mesoglea normals, latitude, contraction), then `points` tentacle discs of [`DISC`].
+//!
+//! [`build_into`]: super::build_into
+
+use super::discs::Disc;
+use super::input::{ShapeError, check};
+use super::mesh::Resolution;
+use super::perlin::perlin4;
+use super::profile::Profile;
+use super::tentacles::{self, SIDEWAYS, TentacleLayout};
+use super::variation::{Variation, apex_fade};
+use crate::sim::SliceView;
+use crate::species::Species;
+use glam::{Vec2, Vec3};
+use std::f32::consts::TAU;
+
+pub const H_SEED: usize = 0;
+pub const H_RINGS: usize = 1;
+pub const H_SEGMENTS: usize = 2;
+pub const H_TENTACLES: usize = 3;
+pub const H_SIDES: usize = 4;
+pub const H_POINTS: usize = 5;
+pub const H_STRUCTURAL: usize = 6;
+pub const H_STRUCTURAL_FREQUENCY: usize = 7;
+/// 1 for `|sin|` lobes, 0 for `sin`.
+pub const H_STRUCTURAL_ABS: usize = 8;
+pub const H_COMPRESSION: usize = 9;
+pub const H_COMPRESSION_FREQUENCY: usize = 10;
+pub const H_UNSTRUCTURED: usize = 11;
+pub const H_LAT_FREQUENCY: usize = 12;
+pub const H_LON_RADIUS: usize = 13;
+/// The noise's time coordinate `f_t·t`.
+pub const H_TAU: usize = 14;
+pub const H_TENTACLE_RADIUS: usize = 15;
+/// The aperture's disc ([`DISC`] values).
+pub const H_APERTURE: usize = 16;
+/// The margin's two mesoglea normals, left then right.
+pub const H_MARGIN_NORMALS: usize = 21;
+/// Header length.
+pub const HEADER: usize = 25;
+/// Values per disc: centre (x, y), radius, radial (x, y).
+pub const DISC: usize = 5;
+/// Values per ring: subumbrella disc, exumbrella disc, normals (left, right), latitude,
+/// contraction.
+pub const RING: usize = 2 * DISC + 6;
+
+/// The length of the block for a resolution.
+pub fn block_len(res: &Resolution) -> usize {
+    HEADER + (res.rings + 1) * RING + res.tentacles.points * DISC
+}
+
+/// Scratch reused between jellyfish and frames.
+#[derive(Clone, Debug, Default)]
+pub struct ShapePacker {
+    profile: Profile,
+    discs: Vec<Disc>,
+}
+
+impl ShapePacker {
+    /// Appends the block of one slice to `out`, for a template of resolution `res`.
+    /// `seed` picks the individual, `time` (s) moves its noise. On error nothing is
+    /// appended.
+    pub fn pack(
+        &mut self,
+        view: &SliceView,
+        species: &Species,
+        res: Resolution,
+        seed: u32,
+        time: f32,
+        out: &mut Vec<f32>,
+    ) -> Result<(), ShapeError> {
+        check(view, species, time)?;
+        let variation = Variation::new(species, seed, time);
+        self.profile
+            .build(view.bell, view.rest_bell, species, res.rings);
+        let n = view.bell.len();
+        let margin = self.profile.margin();
+        let aperture = tentacles::chain_discs(
+            &res.tentacles,
+            view.tentacles,
+            [view.bell[0], view.bell[n - 1]],
+            margin,
+            &mut self.discs,
+        );
+        let start = out.len();
+        out.resize(start + HEADER, 0.0);
+        let header = &mut out[start..];
+        let bits = |v: usize| f32::from_bits(v as u32);
+        header[H_SEED] = f32::from_bits(seed);
+        header[H_RINGS] = bits(res.rings);
+        header[H_SEGMENTS] = bits(res.segments);
+        header[H_TENTACLES] = bits(res.tentacles.count);
+        header[H_SIDES] = bits(res.tentacles.sides);
+        header[H_POINTS] = bits(res.tentacles.points);
+        header[H_STRUCTURAL] = species.structural_scale * species.thickness;
+        header[H_STRUCTURAL_FREQUENCY] = species.structural_frequency;
+        header[H_STRUCTURAL_ABS] = if species.structural_abs { 1.0 } else { 0.0 };
+        header[H_COMPRESSION] = species.compression_scale * species.thickness;
+        header[H_COMPRESSION_FREQUENCY] = species.compression_frequency;
+        header[H_UNSTRUCTURED] = variation.unstructured_amplitude();
+        header[H_LAT_FREQUENCY] = species.noise_frequency_lat;
+        header[H_LON_RADIUS] = species.noise_frequency_lon / TAU;
+        header[H_TAU] = variation.time_coordinate() as f32;
+        header[H_TENTACLE_RADIUS] = species.tentacle_radius;
+        write_disc(&mut header[H_APERTURE..], &aperture);
+        write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
+        let mut radial = Vec2::X;
+        for pair in &self.profile.pairs {
+            let sub = Disc::through(pair.subumbrella[0], pair.subumbrella[1], radial);
+            let ex = Disc::through(pair.exumbrella[0], pair.exumbrella[1], sub.radial);
+            radial = sub.radial;
+            let at = out.len();
+            out.resize(at + RING, 0.0);
+            let ring = &mut out[at..];
+            write_disc(ring, &sub);
+            write_disc(&mut ring[DISC..], &ex);
+            write_normals(&mut ring[2 * DISC..], pair.normal);
+            ring[2 * DISC + 4] = pair.latitude;
+            ring[2 * DISC + 5] = pair.contraction;
+        }
+        for disc in &self.discs {
+            let at = out.len();
+            out.resize(at + DISC, 0.0);
+            write_disc(&mut out[at..], disc);
+        }
+        debug_assert_eq!(out.len() - start, block_len(&res));
+        Ok(())
+    }
+}
+
+fn write_disc(out: &mut [f32], d: &Disc) {
+    out[..DISC].copy_from_slice(&[d.centre.x, d.centre.y, d.radius, d.radial.x, d.radial.y]);
+}
+
+fn write_normals(out: &mut [f32], n: [Vec2; 2]) {
+    out[..4].copy_from_slice(&[n[0].x, n[0].y, n[1].x, n[1].y]);
+}
+
+/// A read-only view of one packed block: what the vertex shader sees.
+#[derive(Clone, Copy)]
+pub struct Block<'a>(pub &'a [f32]);
+
+impl Block<'_> {
+    fn count(&self, at: usize) -> usize {
+        self.0[at].to_bits() as usize
+    }
+
+    fn disc(&self, at: usize) -> Disc {
+        let d = &self.0[at..at + DISC];
+        Disc {
+            centre: Vec3::new(d[0], d[1], 0.0),
+            radius: d[2],
+            radial: Vec2::new(d[3], d[4]),
+        }
+    }
+
+    fn normals(&self, at: usize) -> [Vec2; 2] {
+        let n = &self.0[at..at + 4];
+        [Vec2::new(n[0], n[1]), Vec2::new(n[2], n[3])]
+    }
+
+    fn ring(&self, k: usize) -> usize {
+        HEADER + k * RING
+    }
+
+    fn rings(&self) -> usize {
+        self.count(H_RINGS)
+    }
+
+    fn segments(&self) -> usize {
+        self.count(H_SEGMENTS)
+    }
+
+    /// The unstructured noise QP at latitude coordinate `lat`, angle `cs`.
+    fn noise(&self, lat: f32, (cos, sin): (f32, f32)) -> f32 {
+        let b = self.0;
+        let r = b[H_LON_RADIUS];
+        perlin4(
+            b[H_SEED].to_bits(),
+            [b[H_LAT_FREQUENCY] * lat, r * cos, r * sin, b[H_TAU]],
+        )
+    }
+
+    /// Structural lobes at full strength (see [`Variation::structural`]).
+    fn lobe(&self, sigma: f32) -> f32 {
+        let b = self.0;
+        let s = (b[H_STRUCTURAL_FREQUENCY] * sigma).sin();
+        let s = if b[H_STRUCTURAL_ABS] > 0.5 {
+            s.abs()
+        } else {
+            s
+        };
+        b[H_STRUCTURAL] * s
+    }
+
+    /// Compression ripple at full strength (see [`Variation::compression`]).
+    fn ripple(&self, sigma: f32) -> f32 {
+        let b = self.0;
+        b[H_COMPRESSION] * 0.5 * (1.0 + (b[H_COMPRESSION_FREQUENCY] * sigma).sin())
+    }
+}
+
+/// `(cos σ, sin σ)` and σ of column `j` of `segments`, as `discs::angles` computes them.
+fn column(j: usize, segments: usize) -> ((f32, f32), f32) {
+    let sigma = TAU * (j % segments) as f32 / segments as f32;
+    let (s, c) = sigma.sin_cos();
+    ((c, s), sigma)
+}
+
+/// Ring `k` of surface `surface` (0 exumbrella, 1 subumbrella), column `j`: position and
+/// the analytic (swept mesoglea) normal, outward.
+fn umbrella_point(b: Block, surface: usize, k: usize, j: usize) -> (Vec3, Vec3) {
+    let at = b.ring(k);
+    let (sub, ex) = (b.disc(at), b.disc(at + DISC));
+    let normals = b.normals(at + 2 * DISC);
+    let (latitude, contraction) = (b.0[at + 2 * DISC + 4], b.0[at + 2 * DISC + 5]);
+    let side = if surface == 0 { 1.0 } else { -1.0 };
+    if k == 0 {
+        let n = sub.normal(normals, (1.0, 0.0));
+        let centre = if surface == 0 { ex.centre } else { sub.centre };
+        return (centre, n * side);
+    }
+    let (cs, sigma) = column(j, b.segments());
+    let n = sub.normal(normals, cs);
+    let fade = apex_fade(latitude);
+    let shared = b.lobe(sigma) * fade + b.0[H_UNSTRUCTURED] * latitude * b.noise(latitude, cs);
+    let position = if surface == 0 {
+        ex.point(cs) + n * (shared + b.ripple(sigma) * fade * contraction)
+    } else {
+        sub.point(cs) + n * shared
+    };
+    (position, n * side)
+}
+
+/// Sheet ring `l` (the closed umbrella as one sheet: -1 the exumbrellar apex, then
+/// exumbrella rings out to the margin, subumbrella rings back in, `2·rings` the
+/// subumbrellar apex) as (surface, ring).
+fn sheet(l: isize, rings: usize) -> (usize, usize) {
+    let r = rings as isize;
+    match l {
+        l if l < 0 => (0, 0),
+        l if l >= 2 * r => (1, 0),
+        l if l < r => (0, l as usize + 1),
+        l => (1, (2 * r - l) as usize),
+    }
+}
+
+/// Position and normal of umbrella vertex `index` of the template (the layout of
+/// `umbrella::write_topology`), as the vertex shader computes them.
+pub fn umbrella_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+    let (rings, segments) = (b.rings(), b.segments());
+    let surface_len = 1 + rings * (segments + 1);
+    let (surface, r) = (index / surface_len, index % surface_len);
+    if r == 0 {
+        return umbrella_point(b, surface, 0, 0);
+    }
+    let (k, j) = (1 + (r - 1) / (segments + 1), (r - 1) % (segments + 1));
+    let (position, analytic) = umbrella_point(b, surface, k, j);
+    // Central differences around the ring and along the sheet, as `grid_normals`.
+    let l = if surface == 0 {
+        k as isize - 1
+    } else {
+        2 * rings as isize - k as isize
+    };
+    let at = |l: isize, j: usize| {
+        let (s, k) = sheet(l, rings);
+        umbrella_point(b, s, k, j).0
+    };
+    let around = at(l, j + 1) - at(l, j + segments - 1);
+    let along = at(l + 1, j) - at(l - 1, j);
+    let normal = around.cross(along).try_normalize().unwrap_or(analytic);
+    (position, normal)
+}
+
+/// Centre of tentacle `t`'s ring `m`, as `tentacles::write_surface` places it.
+fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
+    let (count, points) = (b.count(H_TENTACLES), b.count(H_POINTS));
+    let sigma = TAU * t as f32 / count as f32;
+    let (sin, cos) = sigma.sin_cos();
+    let cs = (cos, sin);
+    let aperture = b.disc(H_APERTURE);
+    let normal = aperture.normal(b.normals(H_MARGIN_NORMALS), cs);
+    let sideways = aperture.direction((-sin, cos));
+    let fraction = m as f32 / (points - 1) as f32;
+    let lat = 1.0 + fraction;
+    let amplitude = b.0[H_UNSTRUCTURED];
+    let along = b.lobe(sigma) + amplitude * b.noise(lat, cs);
+    let side = amplitude * fraction * b.noise(lat + SIDEWAYS, cs);
+    let disc = b.disc(b.ring(b.rings() + 1) + m * DISC);
+    disc.point(cs) + normal * along + sideways * side
+}
+
+/// Position and normal of tentacle vertex `index` of the template (the layout of
+/// `tentacles::write_topology`), as the vertex shader computes them.
+pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+    let layout = TentacleLayout {
+        count: b.count(H_TENTACLES),
+        sides: b.count(H_SIDES),
+        points: b.count(H_POINTS),
+    };
+    let per = 2 + layout.points * (layout.sides + 1);
+    let (t, r) = (index / per, index % per);
+    let last = layout.points - 1;
+    let m = if r == 0 {
+        0
+    } else if r == per - 1 {
+        last
+    } else {
+        (r - 1) / (layout.sides + 1)
+    };
+    let centre = tentacle_centre(b, t, m);
+    let tangent = (tentacle_centre(b, t, (m + 1).min(last))
+        - tentacle_centre(b, t, m.saturating_sub(1)))
+    .normalize_or(Vec3::NEG_Y);
+    let radius = b.0[H_TENTACLE_RADIUS];
+    if r == 0 {
+        return (centre - radius * tangent, -tangent);
+    }
+    if r == per - 1 {
+        return (centre + radius * tangent, tangent);
+    }
+    let i = (r - 1) % (layout.sides + 1);
+    let sigma = TAU * t as f32 / layout.count as f32;
+    let (sin, cos) = sigma.sin_cos();
+    let outward = b.disc(H_APERTURE).direction((cos, sin));
+    let n = tentacles::across(outward, tangent);
+    let (sin_phi, cos_phi) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
+    let out = cos_phi * n + sin_phi * tangent.cross(n);
+    (centre + radius * out, out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::{JellyMesh, SliceOutline};
+
+    /// The shader's arithmetic (mirrored here) rebuilds every vertex of the CPU mesh: the
+    /// same positions to a micrometre (the CPU blends its noise between time knots, the
+    /// shader evaluates it at the time itself) and the same normals.
+    #[test]
+    fn packed_block_rebuilds_the_cpu_mesh() {
+        for (species, seed, time) in [
+            (Species::aurelia(), 3, 0.4),
+            (sarsia_like(), 11, 17.0),
+            (Species::aurelia(), 12345, 250.0),
+        ] {
+            for contraction in [0.0, 0.7] {
+                let slice = SliceOutline::contracted(&species, 31, 12, contraction);
+                let view = slice.view();
+                let mesh = JellyMesh::from_slice(&view, &species, seed, time).unwrap();
+                let mut block = Vec::new();
+                ShapePacker::default()
+                    .pack(
+                        &view,
+                        &species,
+                        Resolution::of(&species),
+                        seed,
+                        time,
+                        &mut block,
+                    )
+                    .unwrap();
+                assert_eq!(block.len(), block_len(&Resolution::of(&species)));
+                let b = Block(&block);
+                let tolerance = 1e-6 + 2e-3 * b.0[H_UNSTRUCTURED];
+                for (name, buffers, vertex) in [
+                    (
+                        "umbrella",
+                        &mesh.umbrella,
+                        umbrella_vertex as fn(Block, usize) -> _,
+                    ),
+                    ("tentacles", &mesh.tentacles, tentacle_vertex),
+                ] {
+                    let mut worst = (0.0f32, 1.0f32);
+                    for i in 0..buffers.vertex_count() {
+                        let (p, n) = vertex(b, i);
+                        let (cpu_p, cpu_n) = (
+                            Vec3::from_array(buffers.positions[i]),
+                            Vec3::from_array(buffers.normals[i]),
+                        );
+                        worst.0 = worst.0.max(p.distance(cpu_p));
+                        worst.1 = worst.1.min(n.dot(cpu_n));
+                    }
+                    assert!(
+                        worst.0 < tolerance && worst.1 > 0.999,
+                        "{name} of {} at {time} s: worst position error {:.2e} m, worst \
+                         normal cosine {}",
+                        species.name,
+                        worst.0,
+                        worst.1
+                    );
+                }
+            }
+        }
+    }
+
+    fn sarsia_like() -> Species {
+        Species {
+            name: "tall, four tentacles".into(),
+            height: 0.045,
+            diameter: 0.03,
+            tentacle_count: 4,
+            structural_abs: true,
+            ..Species::aurelia()
+        }
+    }
+
+    #[test]
+    fn a_block_is_a_few_kilobytes() {
+        let res = Resolution::of(&Species::aurelia());
+        let bytes = block_len(&res) * 4;
+        assert!(bytes < 2048, "{bytes} bytes");
+        // Against the rebuilt mesh's positions and normals alone.
+        let vertices = res.umbrella_vertices() + res.tentacle_vertices();
+        assert!(
+            bytes * 50 < vertices * 24,
+            "{bytes} bytes for {vertices} vertices"
+        );
+    }
+}
