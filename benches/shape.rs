@@ -1,8 +1,11 @@
 //! One full regeneration of a jellyfish's surfaces (umbrella + tentacles) from its slice, at
-//! the default (Aurelia) resolution. Prints the vertex and triangle counts it measured.
+//! the default (Aurelia) resolution, against packing its shape for a template mesh (what
+//! the CPU does per jellyfish when the GPU builds the surface). Prints the vertex and
+//! triangle counts and the block's size.
 
 use bevy_jellyfish::Species;
-use bevy_jellyfish::shape::{JellyMesh, SliceOutline, build_into};
+use bevy_jellyfish::shape::packed::{ShapePacker, block_len};
+use bevy_jellyfish::shape::{JellyMesh, Resolution, SliceOutline, build_into};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
@@ -41,7 +44,22 @@ fn regenerate(c: &mut Criterion) {
             })
         });
     }
-    black_box(&mesh);
+    let res = Resolution::of(&aurelia);
+    println!(
+        "shape: the packed block is {} bytes",
+        block_len(&res) * std::mem::size_of::<f32>()
+    );
+    let (mut packer, mut block, mut time) = (ShapePacker::default(), Vec::new(), 0.0);
+    c.bench_function("shape/pack_for_template", |b| {
+        b.iter(|| {
+            time += 1.0 / 60.0;
+            block.clear();
+            packer
+                .pack(black_box(&view), &aurelia, res, 1, time, &mut block)
+                .expect("valid slice");
+        })
+    });
+    black_box((&mesh, &block));
 }
 
 criterion_group!(benches, regenerate);

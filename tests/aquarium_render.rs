@@ -171,9 +171,22 @@ fn jellyfish_show_up_in_the_tank() {
     );
 }
 
-/// Template meshes shaped by the vertex shader draw what CPU meshes draw: the same school
-/// at the same moment, rendered both ways, differs only where the CPU's noise (blended
-/// between time knots) and the shader's (exact) part by micrometres.
+/// A low sun that casts shadows on the tank floor: shadows come from the prepass
+/// pipeline, which template meshes must shape too.
+fn shadow_light(mut commands: Commands) {
+    commands.spawn((
+        DirectionalLight {
+            shadow_maps_enabled: true,
+            illuminance: 8000.0,
+            ..default()
+        },
+        Transform::from_xyz(2.0, 10.0, 4.0).looking_at(Vec3::new(0.0, 0.0, 0.0), Vec3::Y),
+    ));
+}
+
+/// Template meshes shaped by the vertex shader draw what CPU meshes draw, shadows included:
+/// the same school at the same moment, rendered both ways, differs only where the CPU's
+/// noise (blended between time knots) and the shader's (exact) part by micrometres.
 #[test]
 fn templates_draw_what_cpu_meshes_draw() {
     let render = |surfaces: SurfaceMode| {
@@ -182,7 +195,8 @@ fn templates_draw_what_cpu_meshes_draw() {
             seed: 5,
         };
         let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
-            app.add_plugins(AquariumPlugin { school, surfaces });
+            app.add_plugins(AquariumPlugin { school, surfaces })
+                .add_systems(Startup, shadow_light);
         }) {
             Ok(offscreen) => offscreen,
             Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),

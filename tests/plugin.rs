@@ -4,10 +4,15 @@
 
 use bevy::asset::AssetPlugin;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
+use bevy::ecs::system::RunSystemOnce;
+use bevy::mesh::MeshTag;
 use bevy::mesh::{MeshPlugin, VertexAttributeValues};
 use bevy::prelude::*;
+use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice};
+use bevy_jellyfish::plugin::{
+    JellyfishGeometry, JellyfishMeshes, JellyfishSlice, ShapeBuffers, SurfaceMode, SurfacePath,
+};
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, SliceSim, Species,
     SpeciesRejected,
@@ -728,4 +733,232 @@ fn a_large_school_starts_over_a_few_frames() {
     assert_eq!(started(&mut app), 2 * NEW_SLICES_PER_FRAME);
     app.update();
     assert_eq!(started(&mut app), count, "all of them by the third frame");
+}
+
+/// An app drawing with templates: headless, so it brings its own storage-buffer assets
+/// (what a renderer would upload).
+fn template_app() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        AssetPlugin::default(),
+        MeshPlugin,
+        TransformPlugin,
+        JellyfishPlugin {
+            settings: JellyfishSettings {
+                surfaces: SurfaceMode::Templates,
+                ..settings()
+            },
+        },
+    ))
+    .init_asset::<ShaderBuffer>()
+    .insert_resource(TimeUpdateStrategy::ManualDuration(frame(60)));
+    app.finish();
+    app.cleanup();
+    app
+}
+
+fn mesh_data_bytes(app: &App) -> f64 {
+    let store = app.world().resource::<DiagnosticsStore>();
+    store
+        .get(&JellyfishDiagnostics::MESH_DATA)
+        .and_then(|d| d.value())
+        .unwrap_or(f64::NAN)
+        * 1e6
+}
+
+fn tags(app: &mut App) -> Vec<(Entity, Option<u32>, Option<AssetId<Mesh>>)> {
+    let mut q = app
+        .world_mut()
+        .query_filtered::<(Entity, Option<&MeshTag>, Option<&Mesh3d>), With<Jellyfish>>();
+    let mut v: Vec<_> = q
+        .iter(app.world())
+        .map(|(e, t, m)| (e, t.map(|t| t.0), m.map(|m| m.0.id())))
+        .collect();
+    v.sort_by_key(|(e, ..)| *e);
+    v
+}
+
+#[test]
+fn templates_share_one_mesh_and_send_kilobytes_not_meshes() {
+    let mut app = template_app();
+    let h = add_species(&mut app, species());
+    let school: Vec<Entity> = (0..4)
+        .map(|i| {
+            let at = Transform::from_xyz(i as f32, 0.0, 0.0);
+            app.world_mut().spawn((Jellyfish::new(h.clone()), at)).id()
+        })
+        .collect();
+    run(&mut app, 6);
+    assert_eq!(
+        *app.world().resource::<SurfacePath>(),
+        SurfacePath::Templates
+    );
+    let tagged = tags(&mut app);
+    let mesh = tagged[0].2.expect("a template mesh");
+    assert!(
+        tagged.iter().all(|(_, _, m)| *m == Some(mesh)),
+        "{tagged:?}"
+    );
+    let mut slots: Vec<u32> = tagged.iter().map(|(_, t, _)| t.unwrap()).collect();
+    slots.sort();
+    slots.dedup();
+    assert_eq!(slots.len(), 4, "one slot each: {tagged:?}");
+    assert!(slots.iter().all(|t| t & 1 == 0), "umbrellas are part 0");
+    // Each tentacle child carries its parent's slot, part 1.
+    for &e in &school {
+        let meshes = app.world().get::<JellyfishMeshes>(e).unwrap();
+        let child = meshes.tentacle_entity.expect("tentacles");
+        let parent_tag = app.world().get::<MeshTag>(e).unwrap().0;
+        assert_eq!(app.world().get::<MeshTag>(child).unwrap().0, parent_tag | 1);
+        assert_eq!(meshes.path(), Some(SurfacePath::Templates));
+    }
+    // A few kilobytes per jellyfish reach the renderer, against the whole mesh.
+    let per_jellyfish = mesh_data_bytes(&app) / 4.0;
+    let res = JellyfishSettings {
+        surfaces: SurfaceMode::Templates,
+        ..settings()
+    }
+    .resolution(&species());
+    let mesh_bytes = 32.0 * (res.umbrella_vertices() + res.tentacle_vertices()) as f64;
+    println!("{per_jellyfish:.0} bytes per jellyfish per frame, against {mesh_bytes:.0}");
+    assert!(
+        per_jellyfish > 100.0 && per_jellyfish < 4096.0,
+        "{per_jellyfish} bytes"
+    );
+    assert!(per_jellyfish * 10.0 < mesh_bytes);
+    // The shapes change as they swim: the buffer is rewritten, not frozen.
+    let buffers = app.world().resource::<ShapeBuffers>().clone();
+    let read = |app: &App| {
+        let assets = app.world().resource::<Assets<ShaderBuffer>>();
+        assets.get(&buffers.shapes).and_then(|b| b.data.clone())
+    };
+    let _ = read(&app);
+    run(&mut app, 1);
+    let first = read(&app);
+    run(&mut app, 10);
+    assert!(first.is_some() && first != read(&app));
+    // Despawning gives the slot back for the next jellyfish.
+    let freed = app.world().get::<MeshTag>(school[1]).unwrap().0;
+    app.world_mut().entity_mut(school[1]).despawn();
+    run(&mut app, 1);
+    let e = app.world_mut().spawn(Jellyfish::new(h.clone())).id();
+    run(&mut app, 4);
+    assert_eq!(app.world().get::<MeshTag>(e).unwrap().0, freed);
+}
+
+#[test]
+fn switching_surfaces_moves_living_jellyfish_between_paths() {
+    let mut app = template_app();
+    let h = add_species(&mut app, species());
+    let a = app.world_mut().spawn(Jellyfish::new(h.clone())).id();
+    let b = app.world_mut().spawn(Jellyfish::new(h.clone())).id();
+    run(&mut app, 6);
+    let shared = |app: &mut App| {
+        let t = tags(app);
+        t[0].2.is_some() && t[0].2 == t[1].2 && t.iter().all(|(_, tag, _)| tag.is_some())
+    };
+    assert!(shared(&mut app));
+    let mut cpu = settings();
+    cpu.surfaces = SurfaceMode::CpuMeshes;
+    app.insert_resource(cpu);
+    run(&mut app, 3);
+    let t = tags(&mut app);
+    assert!(
+        t.iter().all(|(_, tag, m)| tag.is_none() && m.is_some()),
+        "{t:?}"
+    );
+    assert_ne!(t[0].2, t[1].2, "CPU meshes are each jellyfish's own");
+    assert_eq!(
+        umbrella_positions(&app, a).len(),
+        umbrella_positions(&app, b).len()
+    );
+    app.insert_resource(template_settings());
+    run(&mut app, 3);
+    assert!(shared(&mut app));
+}
+
+fn template_settings() -> JellyfishSettings {
+    JellyfishSettings {
+        surfaces: SurfaceMode::Templates,
+        ..settings()
+    }
+}
+
+#[test]
+fn a_game_material_keeps_cpu_meshes_and_templates_fall_back_without_buffers() {
+    let mut app = template_app();
+    let h = add_species(&mut app, species());
+    let own = app
+        .world_mut()
+        .spawn((
+            Jellyfish::new(h.clone()),
+            MeshMaterial3d::<StandardMaterial>(Handle::default()),
+        ))
+        .id();
+    let plain = app.world_mut().spawn(Jellyfish::new(h.clone())).id();
+    run(&mut app, 6);
+    let path = |app: &App, e| app.world().get::<JellyfishMeshes>(e).unwrap().path();
+    assert_eq!(path(&app, own), Some(SurfacePath::CpuMeshes));
+    assert_eq!(path(&app, plain), Some(SurfacePath::Templates));
+    assert!(!umbrella_positions(&app, own).is_empty());
+
+    // Templates asked for where nothing can hold the shapes: CPU meshes, not nothing.
+    let mut app = app_with(AssetPlugin::default());
+    app.insert_resource(template_settings());
+    let h = add_species(&mut app, species());
+    let e = app.world_mut().spawn(Jellyfish::new(h)).id();
+    run(&mut app, 6);
+    assert_eq!(
+        *app.world().resource::<SurfacePath>(),
+        SurfacePath::CpuMeshes
+    );
+    assert!(!umbrella_positions(&app, e).is_empty());
+}
+
+/// What `JellyfishGeometry` gives is the drawn mesh, in world space, inside the bounds.
+#[test]
+fn geometry_is_the_drawn_surface_in_world_space() {
+    let (mut app, _, e) = one_jellyfish();
+    let placed = Transform::from_xyz(1.0, 2.0, -3.0)
+        .with_rotation(Quat::from_rotation_z(0.7) * Quat::from_rotation_x(0.3))
+        .with_scale(Vec3::splat(25.0));
+    app.world_mut().entity_mut(e).insert(placed);
+    run(&mut app, 8);
+    let drawn = umbrella_positions(&app, e);
+    let world = *app.world().get::<GlobalTransform>(e).unwrap();
+    let (surfaces, sphere) = app
+        .world_mut()
+        .run_system_once(move |geometry: JellyfishGeometry| {
+            (geometry.surfaces(e), geometry.bounding_sphere(e))
+        })
+        .unwrap();
+    let surfaces = surfaces.expect("a drawn jellyfish has geometry");
+    let (centre, radius) = sphere.unwrap();
+    assert_eq!(surfaces.umbrella.positions.len(), drawn.len());
+    for (p, local) in surfaces.umbrella.positions.iter().zip(&drawn) {
+        let expect = world.transform_point(Vec3::from_array(*local));
+        assert!(
+            Vec3::from_array(*p).distance(expect) < 1e-4,
+            "{p:?} vs {expect}"
+        );
+    }
+    for p in surfaces
+        .umbrella
+        .positions
+        .iter()
+        .chain(&surfaces.tentacles.positions)
+    {
+        assert!(Vec3::from_array(*p).distance(centre) <= radius * 1.0001);
+    }
+    // Normals are unit and point out of the bell at the exumbrellar apex.
+    let n = Vec3::from_array(surfaces.umbrella.normals[0]);
+    assert!((n.length() - 1.0).abs() < 1e-4);
+    assert!(n.dot(world.rotation() * Vec3::Y) > 0.9);
+    let not_a_jellyfish = app.world_mut().spawn_empty().id();
+    let none = app
+        .world_mut()
+        .run_system_once(move |g: JellyfishGeometry| g.surfaces(not_a_jellyfish).is_none())
+        .unwrap();
+    assert!(none);
 }

@@ -24,6 +24,7 @@ mod asset;
 mod components;
 mod culling;
 mod diagnostics;
+mod geometry;
 mod material;
 mod meshing;
 mod motion;
@@ -40,6 +41,7 @@ pub use components::{
     Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting, SwimMotion,
 };
 pub use diagnostics::JellyfishDiagnostics;
+pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
 pub use prepare::NEW_SLICES_PER_FRAME;
 pub use settings::{JellyfishSettings, SurfaceMode};

@@ -29,7 +29,7 @@ pub struct ShapeBuffers {
 
 impl ShapeBuffers {
     pub(super) fn new(assets: &mut Assets<ShaderBuffer>) -> Self {
-        let capacity = (64, 4096);
+        let capacity = (8, 512);
         Self {
             offsets: assets.add(buffer(vec![0; capacity.0 * 4])),
             shapes: assets.add(buffer(vec![0; capacity.1 * 4])),
