@@ -1,21 +1,22 @@
-//! Level of detail: how far each shipped species swims per stroke, and what a second of
-//! swimming costs, at a few grid resolutions with each advection scheme: what a cheaper
-//! slice would cost and how far its swimming would be from the full one's.
+//! Levels of detail: for each shipped species, what each tier costs and how far it swims
+//! against the near tier, once the bell has come up to speed.
 //!
-//! `cargo run --release --no-default-features --example lod -- [strokes] [grid...]`
+//! - near: the species' slice, live;
+//! - mid: the same cells in a compact box (`Species::compact_box`), live;
+//! - far: the near slice's recorded cycle (`CycleCache`), replayed;
+//! - and, for the record, the coarser grid the mid tier does not use.
+//!
+//! `cargo run --release --no-default-features --example lod -- [cycles]`
 
-use bevy_jellyfish::SliceSim;
 use bevy_jellyfish::Species;
-use bevy_jellyfish::species::Advection;
+use bevy_jellyfish::sim::{CycleCache, SliceSim};
 use std::time::Instant;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let strokes: u32 = args.first().and_then(|a| a.parse().ok()).unwrap_or(8);
-    let mut grids: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
-    if grids.is_empty() {
-        grids = vec![30, 45, 60];
-    }
+    let cycles: u32 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(6);
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("assets/species")
@@ -24,48 +25,71 @@ fn main() {
         .collect();
     files.sort();
     println!(
-        "species    grid  advection        D/stroke (strokes 2..{strokes})  ms per simulated s"
+        "species    tier             grid  box D  D/cycle  vs near  ms per sim. s  recorded in  cycle MB"
     );
     for file in files {
         let text = std::fs::read_to_string(&file).expect("readable species file");
-        let base = match Species::from_ron(&text) {
+        let near = match Species::from_ron(&text) {
             Ok(s) => s,
             Err(e) => {
                 eprintln!("{}: {e}", file.display());
                 continue;
             }
         };
-        for &grid in &grids {
-            for advection in Advection::ALL {
-                let species = Species {
-                    grid_resolution: grid,
-                    advection,
-                    ..base.clone()
-                };
-                let (per_stroke, cost) = swim(&species, strokes);
+        let coarse = Species {
+            grid_resolution: near.grid_resolution * 2 / 3,
+            ..near.clone()
+        };
+        let mut reference = None;
+        for (tier, species) in [
+            ("near (live)", near.clone()),
+            ("mid (live)", near.compact_box()),
+            ("coarser grid", coarse),
+        ] {
+            let start = Instant::now();
+            let cache = CycleCache::record(&species).expect("valid species");
+            let recorded = start.elapsed().as_secs_f64();
+            let (per_cycle, cost) = live(&cache, cycles);
+            let per_cycle = per_cycle / species.diameter;
+            let reference = *reference.get_or_insert(per_cycle);
+            println!(
+                "{:<10} {tier:<16} {:>4}  {:>5.1}  {per_cycle:>7.3}  {:>+6.1}%  {cost:>13.1}  {recorded:>9.2} s  {:>8.1}",
+                species.name,
+                species.grid_resolution,
+                species.domain_diameters,
+                100.0 * (per_cycle / reference - 1.0),
+                cache.bytes() as f64 * 1e-6,
+            );
+            if tier.starts_with("near") {
+                let replay = cache.swim_per_cycle() / species.diameter;
+                let start = Instant::now();
+                let mut swum = 0.0;
+                let steps = 100 * cache.steps_per_cycle();
+                for i in 0..steps {
+                    swum += std::hint::black_box(cache.frame(i)).surge;
+                }
+                let cost = start.elapsed().as_secs_f64() * 1e3 / (100.0 * species.period() as f64);
+                std::hint::black_box(swum);
                 println!(
-                    "{:<10} {grid:>4}  {:<16} {per_stroke:>8.3}                {cost:>8.1}",
+                    "{:<10} far (replay)     {:>4}  {:>5.1}  {replay:>7.3}  {:>+6.1}%  {cost:>13.4}",
                     species.name,
-                    format!("{advection:?}"),
+                    "-",
+                    "-",
+                    100.0 * (replay / reference - 1.0),
                 );
             }
         }
     }
 }
 
-/// Mean diameters per stroke after the first (the start-up stroke), and CPU ms per
-/// simulated second.
-fn swim(species: &Species, strokes: u32) -> (f32, f64) {
-    let mut sim = SliceSim::new(species).expect("valid species");
-    let period = species.period();
-    sim.advance(period);
+/// Distance per cycle of the live slice over `cycles` cycles from the recorded state, m,
+/// and CPU ms per simulated second.
+fn live(cache: &CycleCache, cycles: u32) -> (f32, f64) {
+    let mut sim: SliceSim = cache.resume(0);
     let start_distance = sim.swim_distance();
     let start = Instant::now();
-    while sim.time() < strokes as f32 * period {
-        sim.advance(1.0 / 60.0);
-    }
-    let cost = start.elapsed().as_secs_f64() * 1e3 / (sim.time() - period) as f64;
-    let per_stroke =
-        (sim.swim_distance() - start_distance) / species.diameter / (strokes - 1).max(1) as f32;
-    (per_stroke, cost)
+    let period = cache.species().period();
+    sim.advance(cycles as f32 * period);
+    let cost = start.elapsed().as_secs_f64() * 1e3 / (cycles as f64 * period as f64);
+    ((sim.swim_distance() - start_distance) / cycles as f32, cost)
 }

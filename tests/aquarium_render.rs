@@ -113,6 +113,7 @@ fn jellyfish_show_up_in_the_tank() {
         app.add_plugins(AquariumPlugin {
             school,
             surfaces: SurfaceMode::Auto,
+            detail: default(),
         });
     }) {
         Ok(offscreen) => offscreen,
@@ -195,8 +196,12 @@ fn templates_draw_what_cpu_meshes_draw() {
             seed: 5,
         };
         let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
-            app.add_plugins(AquariumPlugin { school, surfaces })
-                .add_systems(Startup, shadow_light);
+            app.add_plugins(AquariumPlugin {
+                school,
+                surfaces,
+                detail: default(),
+            })
+            .add_systems(Startup, shadow_light);
         }) {
             Ok(offscreen) => offscreen,
             Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),

@@ -11,7 +11,8 @@ use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    JellyfishGeometry, JellyfishMeshes, JellyfishSlice, ShapeBuffers, SurfaceMode, SurfacePath,
+    CycleCaches, DetailLevels, JellyfishGeometry, JellyfishMeshes, JellyfishSlice, ShapeBuffers,
+    SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, SliceSim, Species,
@@ -961,4 +962,148 @@ fn geometry_is_the_drawn_surface_in_world_space() {
         .run_system_once(move |g: JellyfishGeometry| g.surfaces(not_a_jellyfish).is_none())
         .unwrap();
     assert!(none);
+}
+
+// --- Levels of detail ---
+
+fn set_detail(app: &mut App, near: usize, mid: usize) {
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+        near,
+        mid,
+        ..default()
+    };
+}
+
+/// The largest change of any umbrella vertex (mesh frame) and of the position from one
+/// frame to the next, over `frames` frames.
+fn largest_frame_changes(app: &mut App, e: Entity, frames: usize) -> (f32, f32) {
+    let (mut shape, mut travel) = (0.0f32, 0.0f32);
+    let mut last = (
+        umbrella_positions(app, e),
+        app.world().get::<Transform>(e).unwrap().translation,
+    );
+    for _ in 0..frames {
+        app.update();
+        let now = (
+            umbrella_positions(app, e),
+            app.world().get::<Transform>(e).unwrap().translation,
+        );
+        for (a, b) in now.0.iter().zip(&last.0) {
+            shape = shape.max(Vec3::from(*a).distance(Vec3::from(*b)));
+        }
+        travel = travel.max(now.1.distance(last.1));
+        last = now;
+    }
+    (shape, travel)
+}
+
+#[test]
+fn beyond_the_budget_jellyfish_replay_their_cycle_and_change_tier_without_a_jump() {
+    let mut app = app();
+    set_detail(&mut app, 1, 0);
+    let h = add_species(&mut app, species());
+    let spawn = |app: &mut App, x: f32| {
+        app.world_mut()
+            .spawn((
+                Jellyfish::new(h.clone()).with_phase(0.3),
+                Transform::from_xyz(x, 0.0, 0.0).with_scale(Vec3::splat(10.0)),
+            ))
+            .id()
+    };
+    let (a, b) = (spawn(&mut app, 0.0), spawn(&mut app, 5.0));
+    let (first, second) = (a.min(b), a.max(b));
+    run(&mut app, 30);
+    // No camera: the lowest entity is near, the other replays its species' cycle.
+    assert_eq!(slice(&app, first).tier(), Tier::Near);
+    assert_eq!(slice(&app, second).tier(), Tier::Far);
+    assert!(slice(&app, second).sim().is_none() && slice(&app, second).started());
+    // The replay swims the recorded cycle's distance.
+    let period = species().period();
+    let cycle = app
+        .world_mut()
+        .resource_mut::<CycleCaches>()
+        .get(&species())
+        .unwrap()
+        .swim_per_cycle();
+    let y = |app: &App| app.world().get::<Transform>(second).unwrap().translation.y;
+    let y0 = y(&app);
+    run(&mut app, (3.0 * period * 60.0).round() as usize);
+    let swum = (y(&app) - y0) / 10.0;
+    assert!(
+        (swum - 3.0 * cycle).abs() < 0.05 * 3.0 * cycle,
+        "far: {swum} m in 3 cycles, recorded {cycle} m per cycle"
+    );
+    // Frame to frame changes while far, then across a promotion and a demotion: no
+    // larger than the stroke's own.
+    let (shape, travel) = largest_frame_changes(&mut app, second, 60);
+    set_detail(&mut app, 2, 0);
+    let (promoted_shape, promoted_travel) = largest_frame_changes(&mut app, second, 60);
+    assert_eq!(slice(&app, second).tier(), Tier::Near);
+    assert!(slice(&app, second).sim().is_some());
+    set_detail(&mut app, 1, 0);
+    let (demoted_shape, demoted_travel) = largest_frame_changes(&mut app, second, 60);
+    assert_eq!(slice(&app, second).tier(), Tier::Far);
+    for (what, change, stroke) in [
+        ("shape, promoted", promoted_shape, shape),
+        ("shape, demoted", demoted_shape, shape),
+        ("travel, promoted", promoted_travel, travel),
+        ("travel, demoted", demoted_travel, travel),
+    ] {
+        assert!(
+            change <= 1.2 * stroke,
+            "{what}: {change} per frame against {stroke} in the stroke"
+        );
+    }
+}
+
+#[test]
+fn tiers_follow_size_on_screen_and_replay_identically() {
+    let positions = || {
+        let mut app = app();
+        set_detail(&mut app, 1, 1);
+        spawn_camera(&mut app);
+        let h = add_species(&mut app, species());
+        // Spawned farthest first, so entity order would pick the wrong ones.
+        let e: Vec<Entity> = [-16.0, -8.0, -4.0, -2.0]
+            .into_iter()
+            .map(|z| {
+                app.world_mut()
+                    .spawn((
+                        Jellyfish::new(h.clone()),
+                        Transform::from_xyz(0.0, 0.0, z).with_scale(Vec3::splat(10.0)),
+                    ))
+                    .id()
+            })
+            .collect();
+        run(&mut app, 90);
+        let tiers: Vec<Tier> = e.iter().map(|e| slice(&app, *e).tier()).collect();
+        assert_eq!(tiers, [Tier::Far, Tier::Far, Tier::Mid, Tier::Near]);
+        let store = app.world().resource::<DiagnosticsStore>();
+        let far = store
+            .get(&JellyfishDiagnostics::FAR)
+            .and_then(|d| d.value());
+        assert_eq!(far, Some(2.0));
+        e.iter()
+            .map(|e| app.world().get::<Transform>(*e).unwrap().translation)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        positions(),
+        positions(),
+        "a replay is the same, bit for bit"
+    );
+}
+
+#[test]
+fn pausing_virtual_time_pauses_the_jellyfish() {
+    let (mut app, _, e) = one_jellyfish();
+    run(&mut app, 60);
+    let at = |app: &App| *app.world().get::<Transform>(e).unwrap();
+    app.world_mut().resource_mut::<Time<Virtual>>().pause();
+    let paused = at(&app);
+    run(&mut app, 30);
+    assert_eq!(at(&app), paused, "paused");
+    app.world_mut().resource_mut::<Time<Virtual>>().unpause();
+    run(&mut app, 30);
+    assert_ne!(at(&app), paused, "moving again");
 }

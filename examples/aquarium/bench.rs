@@ -10,7 +10,7 @@ use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::plugin::{JellyfishMeshes, JellyfishSlice, SurfacePath};
+use bevy_jellyfish::plugin::{CycleCaches, JellyfishMeshes, JellyfishSlice, SurfacePath};
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
 use std::time::{Duration, Instant};
 
@@ -78,6 +78,7 @@ pub fn run(
         app.update();
     }
     let (mut simulation, mut meshing, mut mesh_data, mut water) = (0.0, 0.0, 0.0, 0.0);
+    let mut tier_changes = 0.0;
     let steps_before = steps(&mut app);
     let mut frame_ms = Vec::with_capacity(frames);
     let start = Instant::now();
@@ -90,15 +91,24 @@ pub fn run(
         meshing += value(store, &JellyfishDiagnostics::MESHING);
         mesh_data += value(store, &JellyfishDiagnostics::MESH_DATA);
         water += value(store, &JellyfishDiagnostics::WATER);
+        tier_changes += value(store, &JellyfishDiagnostics::TIER_CHANGES);
     }
     let n = frames.max(1) as f64;
     let jellyfish = count(&app).max(1.0);
-    let steps_per_second = (steps(&mut app) - steps_before) as f64 / jellyfish / (n / fps);
+    let store = app.world().resource::<DiagnosticsStore>();
+    let tier = |p| value(store, &p) as usize;
+    let (near, mid, far) = (
+        tier(JellyfishDiagnostics::NEAR),
+        tier(JellyfishDiagnostics::MID),
+        tier(JellyfishDiagnostics::FAR),
+    );
+    let live = (near + mid).max(1);
+    let steps_per_second = (steps(&mut app) - steps_before) as f64 / live as f64 / (n / fps);
     let wall = start.elapsed().as_secs_f64() * 1e3 / n;
     let threads = bevy::tasks::ComputeTaskPool::get().thread_num();
     println!(
         "headless aquarium: {} jellyfish, {fps} fps, {threads} threads, {steps_per_second:.1} \
-         steps per jellyfish-second, {frames} frames: {wall:.2} ms wall per frame; CPU per \
+         steps per live jellyfish-second, {frames} frames: {wall:.2} ms wall per frame; CPU per \
          frame: simulation {:.2} ms, meshing {:.2} ms ({:.3} ms per jellyfish)",
         count(&app),
         simulation / n,
@@ -111,8 +121,11 @@ pub fn run(
         "frame time: mean {:.2} ms, p99 {p99:.2} ms",
         frame_ms.iter().sum::<f64>() / n
     );
-    // Every jellyfish runs its full slice until levels of detail exist.
-    println!("tiers: near {}, mid 0, far 0", count(&app));
+    println!(
+        "tiers: near {near}, mid {mid}, far {far}; {:.2} changes per frame; recorded cycles {:.1} MB",
+        tier_changes / n,
+        app.world().resource::<CycleCaches>().bytes() as f64 * 1e-6,
+    );
     let path = app.world().get_resource::<SurfacePath>().copied();
     println!("surfaces: {path:?}");
     let (seen, all) = seen(&mut app);
@@ -154,7 +167,7 @@ fn seen(app: &mut App) -> (usize, usize) {
         .query::<(&JellyfishSlice, &JellyfishMeshes)>();
     let all: Vec<bool> = q
         .iter(app.world())
-        .filter(|(s, _)| s.sim().is_some())
+        .filter(|(s, _)| s.started())
         .map(|(_, m)| m.seen())
         .collect();
     (all.iter().filter(|s| **s).count(), all.len())
@@ -172,7 +185,7 @@ fn count(app: &App) -> f64 {
     )
 }
 
-/// Coupled steps taken so far, summed over jellyfish.
+/// Coupled steps taken so far, summed over live slices.
 fn steps(app: &mut App) -> u64 {
     let mut slices = app.world_mut().query::<&JellyfishSlice>();
     slices

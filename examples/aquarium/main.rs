@@ -30,7 +30,7 @@ mod water;
 
 use bevy::diagnostic::DiagnosticsStore;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::SurfaceMode;
+use bevy_jellyfish::plugin::{DetailLevels, SurfaceMode};
 use bevy_jellyfish::{JellyfishDiagnostics, JellyfishSettings};
 use scene::AquariumPlugin;
 use school::School;
@@ -51,13 +51,15 @@ struct Args {
     /// Where surfaces are built: templates on the GPU (the bench packs them without one)
     /// or CPU meshes.
     surfaces: SurfaceMode,
+    /// Levels of detail: how many jellyfish are near and mid.
+    detail: DetailLevels,
 }
 
 impl Args {
     fn parse() -> Result<Self, String> {
         let mut args = Args {
             school: School {
-                per_species: 6,
+                per_species: 100,
                 seed: 1,
             },
             screenshot: None,
@@ -67,6 +69,7 @@ impl Args {
             stir: false,
             size: (1280, 720),
             surfaces: SurfaceMode::Auto,
+            detail: DetailLevels::default(),
         };
         let mut it = std::env::args().skip(1);
         while let Some(flag) = it.next() {
@@ -84,6 +87,14 @@ impl Args {
                 "--screenshot" => args.screenshot = Some(value()?.into()),
                 "--bench" => args.bench = true,
                 "--stir" => args.stir = true,
+                "--near" => {
+                    let v = value()?;
+                    args.detail.near = v.parse().map_err(|_| bad(&v))?;
+                }
+                "--mid" => {
+                    let v = value()?;
+                    args.detail.mid = v.parse().map_err(|_| bad(&v))?;
+                }
                 "--surfaces" => {
                     let v = value()?;
                     args.surfaces = match v.as_str() {
@@ -115,7 +126,7 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--surfaces auto|templates|cpu] \
+                         [--surfaces auto|templates|cpu] [--near N] [--mid N] \
                          [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
                          [--bench [--frames 600] [--fps 60]]"
                     ));
@@ -146,6 +157,7 @@ fn main() -> ExitCode {
                     SurfaceMode::Auto => SurfaceMode::Templates,
                     chosen => chosen,
                 },
+                detail: args.detail.clone(),
                 ..scene::settings()
             },
             task_pools(),
@@ -180,6 +192,7 @@ fn main() -> ExitCode {
         AquariumPlugin {
             school: args.school,
             surfaces: args.surfaces,
+            detail: args.detail.clone(),
         },
     ));
     #[cfg(feature = "editor")]
@@ -205,9 +218,13 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let (width, height) = args.size;
     let school = args.school;
     let frames_to_render = args.frames.unwrap_or(120);
-    let (stir, surfaces) = (args.stir, args.surfaces);
+    let (stir, surfaces, detail) = (args.stir, args.surfaces, args.detail.clone());
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
-        app.add_plugins(AquariumPlugin { school, surfaces });
+        app.add_plugins(AquariumPlugin {
+            school,
+            surfaces,
+            detail: detail.clone(),
+        });
         if stir {
             app.insert_resource(water::ScriptedStir::across_the_middle());
         }

@@ -3,13 +3,15 @@
 
 use crate::school::School;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::SurfaceMode;
+use bevy_jellyfish::plugin::{DetailLevels, SurfaceMode};
 use bevy_jellyfish::{JellyfishPlugin, JellyfishSettings};
 
 pub struct AquariumPlugin {
     pub school: School,
     /// Where surfaces are built (`--surfaces`).
     pub surfaces: SurfaceMode,
+    /// How many are near and mid (`--near`, `--mid`).
+    pub detail: DetailLevels,
 }
 
 impl Plugin for AquariumPlugin {
@@ -17,6 +19,7 @@ impl Plugin for AquariumPlugin {
         app.add_plugins(JellyfishPlugin {
             settings: JellyfishSettings {
                 surfaces: self.surfaces,
+                detail: self.detail.clone(),
                 ..settings()
             },
         })

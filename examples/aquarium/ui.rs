@@ -22,7 +22,7 @@ fn school_window(mut contexts: EguiContexts, mut school: ResMut<School>) -> Resu
         .show(ctx, |ui| {
             egui::Grid::new("school").num_columns(2).show(ui, |ui| {
                 ui.label("per species");
-                ui.add(egui::Slider::new(&mut edited.per_species, 0..=40));
+                ui.add(egui::Slider::new(&mut edited.per_species, 0..=334));
                 ui.end_row();
                 ui.label("seed");
                 ui.add(egui::DragValue::new(&mut edited.seed));

@@ -1,8 +1,11 @@
 //! The components of one jellyfish. Spawn [`Jellyfish`]; the rest is required by it.
 
+use super::detail::{Replay, Tier};
 use super::surface::SurfacePath;
 use crate::shape::packed::ShapePacker;
 use crate::shape::{JellyMesh, Resolution};
+use crate::sim::clock::FixedClock;
+use crate::sim::cycle::CycleFrame;
 use crate::sim::{SliceSim, SliceView};
 use crate::species::Species;
 use bevy::math::Vec2;
@@ -66,27 +69,63 @@ fn hash(mut x: u32) -> u32 {
     x ^ (x >> 16)
 }
 
-/// The simulated slice and its last few fixed steps, which frames blend between.
+/// The simulated slice (or, far from the camera, its species' recorded stroke cycle) and
+/// its last few fixed steps, which frames blend between.
 ///
 /// Empty until the species asset has loaded.
 #[derive(Component, Default)]
 pub struct JellyfishSlice {
+    /// The live slice (near and mid tiers).
     pub(crate) sim: Option<SliceSim>,
+    /// The replayed cycle (far tier).
+    pub(crate) replay: Option<Replay>,
+    pub(crate) tier: Tier,
     /// The species as simulated: the last valid one it was given.
     pub(crate) species: Species,
     pub(crate) seed: u32,
     pub(crate) history: SliceHistory,
+    /// The bell at rest, which meshes measure contraction against.
+    pub(crate) rest_bell: Vec<Vec2>,
+    /// Virtual time and the clock's added time at one moment: the clock is set from the
+    /// virtual time elapsed since (an exact count of nanoseconds), so frames that split
+    /// the same time differently end at the same state. Reset when the clock is replaced.
+    pub(crate) anchor: Option<(std::time::Duration, f64)>,
 }
 
 impl JellyfishSlice {
-    /// The slice, once its species has loaded (for debug overlays and tools).
+    /// The live slice, once its species has loaded and while it is near or mid (for debug
+    /// overlays and tools); `None` while it replays its species' cycle (far).
     pub fn sim(&self) -> Option<&SliceSim> {
         self.sim.as_ref()
     }
 
+    /// Whether it swims yet: its species has loaded and it has a slice or a replay.
+    pub fn started(&self) -> bool {
+        self.sim.is_some() || self.replay.is_some()
+    }
+
+    /// How much of it is simulated (see [`Tier`]).
+    pub fn tier(&self) -> Tier {
+        self.tier
+    }
+
     /// The species the slice runs with: the last valid one it was given.
     pub fn species(&self) -> Option<&Species> {
-        self.sim.as_ref().map(|_| &self.species)
+        self.started().then_some(&self.species)
+    }
+
+    /// Its clock: the live slice's or the replay's.
+    pub(crate) fn clock(&self) -> Option<&FixedClock> {
+        match (&self.sim, &self.replay) {
+            (Some(sim), _) => Some(sim.clock()),
+            (None, Some(replay)) => Some(&replay.clock),
+            _ => None,
+        }
+    }
+
+    /// Where it is in its stroke, in cycles [0, 1).
+    pub fn phase(&self) -> Option<f32> {
+        self.clock().map(FixedClock::phase)
     }
 
     pub fn seed(&self) -> u32 {
@@ -105,22 +144,21 @@ impl JellyfishSlice {
         (p - centroid).extend(0.0)
     }
 
-    /// The slice time a frame shows, s: the time added to the slice (`overstep` past the
-    /// last fixed tick of `tick` seconds), less one step and one tick, so that two stored
-    /// steps always bracket it and a frame never waits for a step.
-    pub fn display_time(&self, overstep: f64, tick: f64) -> f64 {
-        let Some(sim) = &self.sim else {
-            return 0.0;
-        };
-        let clock = sim.clock();
-        clock.added() + overstep - clock.step() - tick
+    /// The slice time a frame shows, s: the time added to the slice less one step, so
+    /// that two stored steps always bracket it and a frame never waits for a step.
+    pub fn display_time(&self) -> f64 {
+        self.clock().map_or(0.0, |c| c.added() - c.step())
     }
 
-    /// Starts the slice at `pose`; its clock's start (the phase offset) picks the ticks
-    /// it steps on.
+    /// Starts the slice at `pose`, near; its clock's start (the phase offset) picks the
+    /// frames it steps on.
     pub(crate) fn start(&mut self, sim: SliceSim, species: Species, seed: u32, pose: Pose) {
         self.history.restart(&sim, pose);
+        self.rest_bell = sim.view().rest_bell.to_vec();
         self.sim = Some(sim);
+        self.replay = None;
+        self.tier = Tier::Near;
+        self.anchor = None;
         self.species = species;
         self.seed = seed;
     }
@@ -133,33 +171,80 @@ pub(crate) struct SliceHistory {
     states: std::collections::VecDeque<Snapshot>,
     /// Recycled snapshots, so a step allocates nothing.
     spare: Vec<Snapshot>,
+    /// A shape difference left by a change of tier, faded out over the next steps.
+    carry: Option<Carry>,
+}
+
+/// What the shape was minus what the new tier shows, at the change; added back to the
+/// recorded shapes with a weight falling from 1 to 0 over `steps`.
+#[derive(Default)]
+struct Carry {
+    shape: Snapshot,
+    left: u32,
+    steps: u32,
 }
 
 impl SliceHistory {
-    /// Keeps this many states: the bracket for a lag of one step and one tick, when one
-    /// tick can hold several steps.
-    fn capacity(sim: &SliceSim, tick: f64) -> usize {
-        3 + (tick / sim.clock().step()).ceil().min(64.0) as usize
+    /// Keeps this many states: the bracket for a lag of one step, when one frame can hold
+    /// several steps.
+    fn capacity(clock: &FixedClock, frame: f64) -> usize {
+        3 + (frame / clock.step()).ceil().clamp(0.0, 64.0) as usize
     }
 
     /// Forgets the past: the slice's present state only (a new or rebuilt slice).
     pub fn restart(&mut self, sim: &SliceSim, pose: Pose) {
         self.spare.extend(self.states.drain(..));
-        self.record(sim, 0.0, pose);
+        self.carry = None;
+        self.record(sim.clock(), 0.0, pose, |s| s.capture(sim));
     }
 
-    /// Records the slice's state and the jellyfish's pose after a step, dropping what a
-    /// frame can no longer show.
-    pub fn record(&mut self, sim: &SliceSim, tick: f64, pose: Pose) {
+    /// Records the state after a step (`fill` writes the shape, time and swim distance)
+    /// and the jellyfish's pose, dropping what a frame of `frame` seconds can no longer
+    /// show.
+    pub fn record(
+        &mut self,
+        clock: &FixedClock,
+        frame: f64,
+        pose: Pose,
+        fill: impl FnOnce(&mut Snapshot),
+    ) {
         let mut snapshot = self.spare.pop().unwrap_or_default();
-        snapshot.capture(sim);
+        fill(&mut snapshot);
         snapshot.pose = pose;
+        if let Some(carry) = &mut self.carry {
+            let weight = carry.left as f32 / carry.steps.max(1) as f32;
+            snapshot.add(&carry.shape, weight);
+            carry.left = carry.left.saturating_sub(1);
+            if carry.left == 0 {
+                self.carry = None;
+            }
+        }
         self.states.push_back(snapshot);
-        while self.states.len() > Self::capacity(sim, tick) {
+        while self.states.len() > Self::capacity(clock, frame) {
             if let Some(old) = self.states.pop_front() {
                 self.spare.push(old);
             }
         }
+    }
+
+    /// A change of tier: the new tier's present shape is `now`, at time `time`. The
+    /// stored steps are moved to the new clock's time, and the difference between the
+    /// newest stored shape and `now` fades out over `steps` steps, so nothing jumps.
+    pub fn change_tier(&mut self, now: &Snapshot, time: f64, steps: u32) {
+        let Some(newest) = self.states.back() else {
+            return;
+        };
+        let shift = time - newest.time;
+        let mut shape = newest.clone();
+        shape.add(now, -1.0);
+        for s in &mut self.states {
+            s.time += shift;
+        }
+        self.carry = Some(Carry {
+            shape,
+            left: steps,
+            steps,
+        });
     }
 
     pub fn newest(&self) -> Option<&Snapshot> {
@@ -297,6 +382,30 @@ impl Snapshot {
         self.pose = a.pose.blend(&b.pose, t);
     }
 
+    /// The recorded cycle's frame, at slice time `time` and swim distance `swim`.
+    pub fn copy_frame(&mut self, frame: &CycleFrame, time: f64, swim: f32) {
+        self.bell.clone_from(&frame.bell);
+        for (out, chain) in self.tentacles.iter_mut().zip(&frame.tentacles) {
+            out.clone_from(chain);
+        }
+        self.centroid = frame.centroid;
+        self.swim = swim;
+        self.time = time;
+    }
+
+    /// `self += weight · other`, point by point, where the shapes match.
+    fn add(&mut self, other: &Snapshot, weight: f32) {
+        let add = |a: &mut Vec<Vec2>, b: &[Vec2]| {
+            if a.len() == b.len() {
+                a.iter_mut().zip(b).for_each(|(a, b)| *a += weight * *b);
+            }
+        };
+        add(&mut self.bell, &other.bell);
+        for side in 0..2 {
+            add(&mut self.tentacles[side], &other.tentacles[side]);
+        }
+    }
+
     pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {
         SliceView {
             bell: &self.bell,
@@ -317,8 +426,8 @@ pub struct SwimMotion {
     /// Ground velocity over the newest step (the water's plus its own swimming), world
     /// units per second.
     pub velocity: Vec3,
-    /// Its own swimming along its axis over the last fixed tick, world units per second
-    /// (negative while the bell recoils).
+    /// Its own swimming along its axis over the steps of the last frame that took any,
+    /// world units per second (negative while the bell recoils).
     pub swim_speed: f32,
     /// Swim distance at the newest step, m.
     #[reflect(ignore)]

@@ -12,12 +12,18 @@ use std::time::Duration;
 pub struct JellyfishDiagnostics;
 
 impl JellyfishDiagnostics {
-    /// Slice stepping, all fixed ticks of the frame, ms.
+    /// Slice stepping and cycle replay, ms.
     pub const SIMULATION: DiagnosticPath = DiagnosticPath::const_new("jellyfish/simulation_ms");
     /// Mesh rebuilding and upload to the mesh assets, ms.
     pub const MESHING: DiagnosticPath = DiagnosticPath::const_new("jellyfish/meshing_ms");
-    /// Jellyfish with a running slice.
+    /// Jellyfish swimming (their species loaded), of any tier.
     pub const COUNT: DiagnosticPath = DiagnosticPath::const_new("jellyfish/count");
+    /// Jellyfish at each [`Tier`](super::Tier).
+    pub const NEAR: DiagnosticPath = DiagnosticPath::const_new("jellyfish/near");
+    pub const MID: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mid");
+    pub const FAR: DiagnosticPath = DiagnosticPath::const_new("jellyfish/far");
+    /// Jellyfish that changed tier this frame.
+    pub const TIER_CHANGES: DiagnosticPath = DiagnosticPath::const_new("jellyfish/tier_changes");
     /// Stepping the tank's water ([`TankWater`](super::TankWater)), all fixed ticks of the
     /// frame, ms.
     pub const WATER: DiagnosticPath = DiagnosticPath::const_new("jellyfish/water_ms");
@@ -32,6 +38,7 @@ pub(crate) struct JellyfishTimings {
     meshing_ns: AtomicU64,
     water_ns: AtomicU64,
     mesh_bytes: AtomicU64,
+    tier_changes: AtomicU64,
 }
 
 impl JellyfishTimings {
@@ -50,6 +57,10 @@ impl JellyfishTimings {
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
 
+    pub fn add_tier_changes(&self, count: usize) {
+        self.tier_changes.fetch_add(count as u64, Ordering::Relaxed);
+    }
+
     pub fn add_mesh_bytes(&self, bytes: usize) {
         self.mesh_bytes.fetch_add(bytes as u64, Ordering::Relaxed);
     }
@@ -60,6 +71,10 @@ pub(super) fn plugin(app: &mut App) {
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::SIMULATION).with_suffix(" ms"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESHING).with_suffix(" ms"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::NEAR))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MID))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::FAR))
+        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::TIER_CHANGES))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"))
         .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::WATER).with_suffix(" ms"))
         .add_systems(Last, record);
@@ -78,7 +93,15 @@ fn record(
     diagnostics.add_measurement(&JellyfishDiagnostics::WATER, || water);
     let bytes = timings.mesh_bytes.swap(0, Ordering::Relaxed);
     diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || bytes as f64 * 1e-6);
-    diagnostics.add_measurement(&JellyfishDiagnostics::COUNT, || {
-        slices.iter().filter(|s| s.sim().is_some()).count() as f64
-    });
+    let changes = timings.tier_changes.swap(0, Ordering::Relaxed) as f64;
+    diagnostics.add_measurement(&JellyfishDiagnostics::TIER_CHANGES, || changes);
+    let mut tiers = [0usize; 3];
+    for slice in slices.iter().filter(|s| s.started()) {
+        tiers[slice.tier() as usize] += 1;
+    }
+    let count = tiers.iter().sum::<usize>() as f64;
+    diagnostics.add_measurement(&JellyfishDiagnostics::COUNT, || count);
+    diagnostics.add_measurement(&JellyfishDiagnostics::NEAR, || tiers[0] as f64);
+    diagnostics.add_measurement(&JellyfishDiagnostics::MID, || tiers[1] as f64);
+    diagnostics.add_measurement(&JellyfishDiagnostics::FAR, || tiers[2] as f64);
 }

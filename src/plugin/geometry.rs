@@ -56,9 +56,11 @@ impl JellyfishGeometry<'_, '_> {
     /// that is not a jellyfish or has not been drawn yet.
     pub fn surfaces(&self, entity: Entity) -> Option<WorldSurfaces> {
         let (slice, meshes, transform) = self.jellyfish.get(entity).ok()?;
-        let sim = slice.sim()?;
+        if !slice.started() {
+            return None;
+        }
         meshes.bounds?;
-        let view = meshes.blended.view(sim.view().rest_bell);
+        let view = meshes.blended.view(&slice.rest_bell);
         let mut mesh = JellyMesh::new();
         let res = self.settings.resolution(&slice.species);
         let time = meshes.blended.time as f32;

@@ -36,21 +36,19 @@ pub(super) fn plugin(app: &mut App) {
 fn build_buffers(
     mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes, &GlobalTransform)>,
     cameras: Query<(&Camera, &Frustum)>,
-    time: Res<Time<Fixed>>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
 ) {
-    let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
     let frusta = active_frusta(&cameras);
     jellyfish
         .par_iter_mut()
         .for_each(|(slice, mut meshes, transform)| {
-            let Some(sim) = slice.sim() else {
+            if !slice.started() {
                 return;
-            };
+            }
             let start = Instant::now();
             let meshes = &mut *meshes;
-            let Some((a, b, t)) = slice.history.bracket(slice.display_time(overstep, tick)) else {
+            let Some((a, b, t)) = slice.history.bracket(slice.display_time()) else {
                 return;
             };
             meshes.blended.blend(a, b, t);
@@ -64,7 +62,7 @@ fn build_buffers(
                 return;
             }
             let res = settings.resolution(&slice.species);
-            let view = meshes.blended.view(sim.view().rest_bell);
+            let view = meshes.blended.view(&slice.rest_bell);
             let (seed, time) = (slice.seed, meshes.blended.time as f32);
             let built = if templates {
                 let JellyfishMeshes { packer, block, .. } = meshes;

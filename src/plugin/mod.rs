@@ -16,13 +16,16 @@
 //!     .run();
 //! ```
 //!
-//! Order of a frame, in [`JellyfishSystems`]: `Prepare` (PreUpdate) creates slices and
-//! applies species edits; `StepSlices` (FixedUpdate) steps them; `WriteTransforms` and
-//! `RebuildMeshes` (PostUpdate) blend the last two steps into the frame.
+//! Order of a frame, in [`JellyfishSystems`]: `Prepare` (PreUpdate) creates slices,
+//! applies species edits and chooses each jellyfish's level of detail ([`Tier`]);
+//! `StepSlices` (PostUpdate) steps them by the frame's virtual time; `WriteTransforms` and
+//! `RebuildMeshes` (PostUpdate) blend the last two steps into the frame. The tank's water
+//! ([`TankWater`]) steps on the app's fixed ticks.
 
 mod asset;
 mod components;
 mod culling;
+mod detail;
 mod diagnostics;
 mod geometry;
 mod material;
@@ -40,6 +43,7 @@ pub use asset::{SpeciesLoader, SpeciesRejected};
 pub use components::{
     Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting, SwimMotion,
 };
+pub use detail::{CycleCaches, DetailLevels, Tier, tier_species};
 pub use diagnostics::JellyfishDiagnostics;
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
@@ -68,9 +72,10 @@ pub struct JellyfishPlugin {
 /// against these (e.g. steering before `StepSlices`, reading meshes after `RebuildMeshes`).
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum JellyfishSystems {
-    /// PreUpdate: create slices for new jellyfish, apply species and settings edits.
+    /// PreUpdate: create slices for new jellyfish, apply species and settings edits,
+    /// choose levels of detail.
     Prepare,
-    /// FixedUpdate: step the slices, in parallel over jellyfish.
+    /// PostUpdate: step the slices by the frame's virtual time, in parallel over jellyfish.
     StepSlices,
     /// PostUpdate: move each jellyfish along its axis, blended between fixed steps.
     WriteTransforms,
@@ -92,6 +97,7 @@ impl Plugin for JellyfishPlugin {
                 diagnostics::plugin,
                 material::plugin,
                 prepare::plugin,
+                detail::plugin,
                 step::plugin,
                 motion::plugin,
                 meshing::plugin,
@@ -104,6 +110,7 @@ impl Plugin for JellyfishPlugin {
             .configure_sets(
                 PostUpdate,
                 (
+                    JellyfishSystems::StepSlices,
                     JellyfishSystems::WriteTransforms,
                     JellyfishSystems::RebuildMeshes,
                 )

@@ -17,15 +17,11 @@ pub(super) fn plugin(app: &mut App) {
 /// of per-frame increments, so a frame rate changes nothing but how often they are drawn.
 /// A `Transform` changed by someone else since the plugin wrote it (a game's teleport or
 /// turn) moves the travel and every stored pose with it.
-fn write_transforms(
-    mut jellyfish: Query<(&mut JellyfishSlice, &mut SwimMotion, &mut Transform)>,
-    time: Res<Time<Fixed>>,
-) {
-    let (overstep, tick) = (time.overstep().as_secs_f64(), time.timestep().as_secs_f64());
+fn write_transforms(mut jellyfish: Query<(&mut JellyfishSlice, &mut SwimMotion, &mut Transform)>) {
     jellyfish
         .par_iter_mut()
         .for_each(|(mut slice, mut motion, mut transform)| {
-            if slice.sim.is_none() {
+            if !slice.started() {
                 return;
             }
             if let Some(written) = motion.written
@@ -35,7 +31,7 @@ fn write_transforms(
                 slice.history.move_poses(from, to);
                 motion.pose = motion.pose.moved(from, to);
             }
-            let Some(pose) = slice.history.pose_at(slice.display_time(overstep, tick)) else {
+            let Some(pose) = slice.history.pose_at(slice.display_time()) else {
                 return;
             };
             transform.translation = pose.position;

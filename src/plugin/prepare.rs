@@ -3,6 +3,7 @@
 use super::JellyfishSystems;
 use super::asset::SpeciesRejected;
 use super::components::{Jellyfish, JellyfishSlice, Pose, SwimMotion};
+use super::detail::{CycleCaches, tier_species};
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::HashSet;
@@ -12,7 +13,7 @@ use bevy::utils::Parallel;
 pub(super) fn plugin(app: &mut App) {
     app.add_systems(
         PreUpdate,
-        (apply_edits, create_slices)
+        (apply_edits, create_slices, super::detail::change_tiers)
             .chain()
             .in_set(JellyfishSystems::Prepare),
     );
@@ -48,7 +49,7 @@ fn create_slices(
     let mut waiting: Vec<Entity> = jellyfish
         .iter()
         .filter(|(e, jelly, slice, ..)| {
-            slice.sim.is_none() && !failed.contains(e) && species.contains(&jelly.species)
+            !slice.started() && !failed.contains(e) && species.contains(&jelly.species)
         })
         .map(|(e, ..)| e)
         .collect();
@@ -99,11 +100,12 @@ struct Refused {
 
 /// Applies edited species assets and a jellyfish's new species handle to living slices
 /// through [`SliceSim::set_species`], which refuses an invalid species before changing
-/// anything.
+/// anything. A far jellyfish takes the new species' recorded cycle.
 fn apply_edits(
     mut events: MessageReader<AssetEvent<Species>>,
     mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice, &mut SwimMotion)>,
     species: Res<Assets<Species>>,
+    mut caches: ResMut<CycleCaches>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
     let edited: HashSet<AssetId<Species>> = events
@@ -124,26 +126,11 @@ fn apply_edits(
             continue;
         };
         let slice = &mut *slice;
-        let Some(sim) = slice.sim.as_mut() else {
-            continue;
-        };
-        if *simulated == slice.species {
+        if !slice.started() || *simulated == slice.species {
             continue;
         }
-        let clock = sim.clock().clone();
-        match sim.set_species(simulated) {
-            Ok(()) => {
-                let topology = slice
-                    .history
-                    .newest()
-                    .is_none_or(|s| s.bell.len() != sim.view().bell.len());
-                slice.species = simulated.clone();
-                // A new shape or a new step (the stored times are the old clock's).
-                if topology || *sim.clock() != clock {
-                    slice.history.restart(sim, motion.pose);
-                }
-                motion.swum = sim.swim_distance();
-            }
+        match apply(slice, &mut motion, simulated, &mut caches) {
+            Ok(()) => slice.species = simulated.clone(),
             Err(error) => {
                 if reported.insert(id) {
                     error!(
@@ -154,4 +141,47 @@ fn apply_edits(
             }
         }
     }
+}
+
+/// One jellyfish's slice (or replay) takes `species`, at its tier.
+fn apply(
+    slice: &mut JellyfishSlice,
+    motion: &mut SwimMotion,
+    species: &Species,
+    caches: &mut CycleCaches,
+) -> Result<(), SpeciesError> {
+    species.validate()?;
+    let simulated = tier_species(species, slice.tier);
+    slice.anchor = None;
+    if let Some(sim) = slice.sim.as_mut() {
+        let clock = sim.clock().clone();
+        sim.set_species(&simulated)?;
+        let topology = slice
+            .history
+            .newest()
+            .is_none_or(|s| s.bell.len() != sim.view().bell.len());
+        // A new shape or a new step (the stored times are the old clock's).
+        if topology || *sim.clock() != clock {
+            slice.history.restart(sim, motion.pose);
+        }
+        slice.rest_bell = sim.view().rest_bell.to_vec();
+        motion.swum = sim.swim_distance();
+    } else if let Some(replay) = slice.replay.as_mut() {
+        let Some(cache) = caches.get(&simulated) else {
+            return species.validate();
+        };
+        let retimed = replay
+            .clock
+            .retimed(species.period(), species.steps_per_cycle());
+        if retimed != replay.clock || cache.rest_bell().len() != slice.rest_bell.len() {
+            replay.clock = retimed;
+            let mut now = super::components::Snapshot::default();
+            let frame = cache.frame(replay.index());
+            now.copy_frame(frame, replay.clock.time(), replay.swim as f32);
+            slice.history.change_tier(&now, replay.clock.time(), 1);
+        }
+        slice.rest_bell = cache.rest_bell().to_vec();
+        replay.cache = cache;
+    }
+    Ok(())
 }

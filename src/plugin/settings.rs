@@ -1,6 +1,9 @@
-//! [`JellyfishSettings`]: how every jellyfish is drawn. Nothing here changes the physics:
-//! a slice's step, grid and numerics belong to its species.
+//! [`JellyfishSettings`]: how every jellyfish is drawn, and how many are simulated in
+//! full. A slice's step, grid and numerics belong to its species; the levels of detail
+//! only choose which jellyfish replay their species' recorded stroke instead (see
+//! [`DetailLevels`]).
 
+use super::detail::DetailLevels;
 use crate::shape::Resolution;
 use crate::species::Species;
 use bevy::prelude::*;
@@ -13,6 +16,8 @@ pub struct JellyfishSettings {
     pub mesh_resolution_scale: f32,
     /// Where surfaces are built: on the GPU from shared template meshes, or on the CPU.
     pub surfaces: SurfaceMode,
+    /// How many jellyfish are simulated in full, in a compact box, or replayed.
+    pub detail: DetailLevels,
 }
 
 impl Default for JellyfishSettings {
@@ -20,6 +25,7 @@ impl Default for JellyfishSettings {
         Self {
             mesh_resolution_scale: 1.0,
             surfaces: SurfaceMode::Auto,
+            detail: DetailLevels::default(),
         }
     }
 }

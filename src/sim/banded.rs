@@ -5,6 +5,7 @@
 //! every coupling lands within a few rows of the diagonal, so an exact banded solve costs
 //! O(n·b²) and never stalls the way conjugate gradients does on stiff hinges.
 
+#[derive(Clone)]
 pub struct BandedSpd {
     n: usize,
     /// Half-bandwidth: entries with `|row - col| > band` are zero.

@@ -124,6 +124,23 @@ impl FixedClock {
         due
     }
 
+    /// Sets the time added so far to `added` s (if later than now): a caller that keeps
+    /// its own total (an exact count of nanoseconds) adds no rounding of its own, so any
+    /// split of the same total ends at the same time. Returns the steps now due, as
+    /// [`Self::add`].
+    pub fn add_until(&mut self, added: f64) -> u64 {
+        if !added.is_finite() || added <= self.added {
+            return 0;
+        }
+        self.added = added;
+        let due = self.steps_due();
+        if due > MAX_STEPS_PER_ADVANCE {
+            self.added = (self.taken + MAX_STEPS_PER_ADVANCE) as f64 * self.step;
+            return MAX_STEPS_PER_ADVANCE;
+        }
+        due
+    }
+
     /// Steps the added time pays for that are not taken yet.
     pub fn steps_due(&self) -> u64 {
         let target = steps_in(self.added, self.step);

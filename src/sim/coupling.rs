@@ -11,7 +11,7 @@ use super::kernel::Stencil;
 use glam::Vec2;
 
 /// The stencils of a set of points on the grid, per velocity component.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Coupling {
     u: Vec<Stencil>,
     v: Vec<Stencil>,

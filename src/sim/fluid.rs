@@ -12,6 +12,7 @@ use super::kernel::{self, Stencil};
 use super::pressure::PoissonSolver;
 use glam::Vec2;
 
+#[derive(Clone)]
 pub struct Fluid {
     /// Cells per side.
     pub n: usize,
@@ -102,6 +103,26 @@ impl Fluid {
     }
 
     /// One fluid step of `dt` seconds with the accumulated force, which is then cleared.
+    /// Heap bytes of the fields and scratch buffers.
+    pub fn bytes(&self) -> usize {
+        let f32s = [
+            &self.u,
+            &self.v,
+            &self.force_u,
+            &self.force_v,
+            &self.sponge_u,
+            &self.sponge_v,
+            &self.scratch_u,
+            &self.scratch_v,
+            &self.back_u,
+            &self.back_v,
+            &self.phi,
+        ];
+        f32s.iter().map(|v| v.len() * 4).sum::<usize>()
+            + (self.bounds_u.len() + self.bounds_v.len()) * 8
+            + self.poisson.bytes()
+    }
+
     pub fn step(&mut self, dt: f32) {
         self.advect(dt);
         self.apply_force(dt);

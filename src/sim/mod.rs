@@ -4,12 +4,14 @@ mod banded;
 pub mod body;
 pub mod clock;
 pub mod coupling;
+pub mod cycle;
 pub mod fluid;
 pub mod kernel;
 pub mod muscle;
 pub mod pressure;
 mod slice;
 
+pub use cycle::CycleCache;
 pub use slice::SliceSim;
 
 use glam::Vec2;

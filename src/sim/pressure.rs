@@ -29,25 +29,41 @@ fn plan(n: usize) -> Across {
         .clone()
 }
 
+#[derive(Clone)]
 pub struct PoissonSolver {
     n: usize,
     across: Across,
     /// `1 / h²`: the tridiagonal systems' off-diagonal.
     off: f64,
-    /// Elimination factors per row `j` and cosine mode `k` (row-major, like the field):
-    /// the reciprocal of the eliminated diagonal, and the eliminated upper diagonal.
-    inverse_pivot: Vec<f64>,
-    upper: Vec<f64>,
+    /// Elimination factors, shared by every slice of the same grid.
+    factors: Arc<Factors>,
     /// The modes' values along the channel, `f64`.
     modes: Vec<f64>,
     scratch: Vec<f32>,
 }
 
-impl PoissonSolver {
-    /// A solver for an `n × n` grid of cells of size `h`.
-    pub fn new(n: usize, h: f32) -> Self {
-        let across = plan(n);
-        let scratch = vec![0.0; across.get_scratch_len()];
+/// Elimination factors per row `j` and cosine mode `k` (row-major, like the field): the
+/// reciprocal of the eliminated diagonal, and the eliminated upper diagonal. They depend
+/// only on the grid, so slices of one species share them (115 KB at grid 60) and a
+/// school's working set stays in cache.
+struct Factors {
+    inverse_pivot: Vec<f64>,
+    upper: Vec<f64>,
+}
+
+/// The factors for `n` cells of size `h`, computed once per grid.
+fn factors(n: usize, h: f32) -> Arc<Factors> {
+    type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
+    static FACTORS: OnceLock<Shared> = OnceLock::new();
+    let all = FACTORS.get_or_init(Default::default);
+    let mut all = all.lock().unwrap_or_else(|e| e.into_inner());
+    all.entry((n, h.to_bits()))
+        .or_insert_with(|| Arc::new(Factors::new(n, h)))
+        .clone()
+}
+
+impl Factors {
+    fn new(n: usize, h: f32) -> Self {
         let (pi, h) = (std::f64::consts::PI, h as f64);
         let off = 1.0 / (h * h);
         let (mut inverse_pivot, mut upper) = (vec![0.0; n * n], vec![0.0; n * n]);
@@ -74,14 +90,30 @@ impl PoissonSolver {
             }
         }
         Self {
-            n,
-            across,
-            off,
             inverse_pivot,
             upper,
+        }
+    }
+}
+
+impl PoissonSolver {
+    /// A solver for an `n × n` grid of cells of size `h`.
+    pub fn new(n: usize, h: f32) -> Self {
+        let across = plan(n);
+        let scratch = vec![0.0; across.get_scratch_len()];
+        Self {
+            n,
+            across,
+            off: 1.0 / (h as f64 * h as f64),
+            factors: factors(n, h),
             modes: vec![0.0; n * n],
             scratch,
         }
+    }
+
+    /// Heap bytes of this solver's own (unshared) buffers.
+    pub fn bytes(&self) -> usize {
+        self.modes.len() * 8 + self.scratch.len() * 4
     }
 
     /// Solves `∇²φ = rhs` in place (row-major, `n × n`, rows along x), with ∂φ/∂n = 0 at
@@ -100,7 +132,7 @@ impl PoissonSolver {
             let (done, rest) = self.modes.split_at_mut(j * n);
             let here = &mut rest[..n];
             let rhs = &field[j * n..][..n];
-            let pivot = &self.inverse_pivot[j * n..][..n];
+            let pivot = &self.factors.inverse_pivot[j * n..][..n];
             if j == 0 {
                 for ((m, r), p) in here.iter_mut().zip(rhs).zip(pivot) {
                     *m = norm * *r as f64 * p;
@@ -116,7 +148,7 @@ impl PoissonSolver {
         for j in (0..n - 1).rev() {
             let (lower, upper_rows) = self.modes.split_at_mut((j + 1) * n);
             let (here, above) = (&mut lower[j * n..], &upper_rows[..n]);
-            let upper = &self.upper[j * n..][..n];
+            let upper = &self.factors.upper[j * n..][..n];
             for ((m, a), u) in here.iter_mut().zip(above).zip(upper) {
                 *m -= u * a;
             }

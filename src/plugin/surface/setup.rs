@@ -84,7 +84,7 @@ pub(crate) fn set_up(
     }
     let global = path.map_or(SurfacePath::CpuMeshes, |p| *p);
     for (entity, slice, mut meshes, material) in &mut jellyfish {
-        if slice.sim().is_none() {
+        if !slice.started() {
             continue;
         }
         // A material of the game's own is a StandardMaterial: it needs real meshes.

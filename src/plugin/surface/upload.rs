@@ -120,15 +120,17 @@ pub(crate) fn upload(
     buffers.capacity = capacity;
     offsets.resize(capacity.0, 0);
     shapes.resize(capacity.1, 0.0);
-    let bytes = |words: &mut dyn Iterator<Item = u32>| -> Vec<u8> {
-        words.flat_map(u32::to_le_bytes).collect()
+    // The GPU reads little-endian words: on such a host the bytes are the memory as is.
+    let bytes = |words: &[u32]| -> Vec<u8> {
+        if cfg!(target_endian = "little") {
+            bytemuck::cast_slice(words).to_vec()
+        } else {
+            words.iter().flat_map(|w| w.to_le_bytes()).collect()
+        }
     };
     let written = [
-        (&buffers.offsets, bytes(&mut offsets.iter().copied())),
-        (
-            &buffers.shapes,
-            bytes(&mut shapes.iter().map(|v| v.to_bits())),
-        ),
+        (&buffers.offsets, bytes(&offsets)),
+        (&buffers.shapes, bytes(bytemuck::cast_slice(&shapes))),
     ];
     let mut total = 0;
     for (handle, data) in written {

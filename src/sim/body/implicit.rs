@@ -8,6 +8,7 @@ use std::ops::Range;
 
 /// Exact solve of `(m/dt² I + Σ k g gᵀ) δ = F` with a banded Cholesky factorisation, over
 /// a subset of the body's points (the others are held where they are).
+#[derive(Clone)]
 pub(super) struct Solver {
     /// Position of each point in the band ordering; `None` for points held fixed.
     order: Vec<Option<usize>>,

@@ -30,6 +30,7 @@ use implicit::Solver;
 use std::ops::Range;
 use tentacle::{TentacleDrag, tentacle_bending};
 
+#[derive(Clone)]
 pub struct Body {
     pub points: Vec<Vec2>,
     /// Positions at rest, relative to the same origin as construction.

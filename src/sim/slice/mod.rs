@@ -22,6 +22,7 @@ const SPONGE_RATE: f32 = 4.0;
 /// Water ahead of the bell's apex, in bell diameters: the rest of the box is for the wake.
 const BOW_DIAMETERS: f32 = 1.5;
 
+#[derive(Clone)]
 pub struct SliceSim {
     species: Species,
     fluid: Fluid,
@@ -113,8 +114,19 @@ impl SliceSim {
 
     /// [`Self::advance`], calling `after_step` with the slice after each fixed step (to
     /// keep the states a renderer interpolates between).
-    pub fn advance_with(&mut self, dt: f32, mut after_step: impl FnMut(&Self)) {
+    pub fn advance_with(&mut self, dt: f32, after_step: impl FnMut(&Self)) {
         let due = self.clock.add(dt as f64);
+        self.take_steps(due, after_step);
+    }
+
+    /// [`Self::advance_with`] to a total: the time added since the start becomes `added`
+    /// seconds ([`FixedClock::add_until`]), for a caller that keeps an exact total.
+    pub fn advance_until_with(&mut self, added: f64, after_step: impl FnMut(&Self)) {
+        let due = self.clock.add_until(added);
+        self.take_steps(due, after_step);
+    }
+
+    fn take_steps(&mut self, due: u64, mut after_step: impl FnMut(&Self)) {
         let before = self.substeps;
         for _ in 0..due {
             self.fixed_step();
@@ -122,6 +134,24 @@ impl SliceSim {
             after_step(self);
         }
         self.last_substeps = (self.substeps - before) as usize;
+    }
+
+    /// Exactly one fixed step, whatever time was added (recording a cycle).
+    pub(crate) fn step_once(&mut self) {
+        self.clock.add(self.clock.step());
+        self.fixed_step();
+        self.refresh_view();
+    }
+
+    /// Puts the slice on another clock (a jellyfish resuming from a recorded cycle keeps
+    /// its own time and phase). The clock's step should be this species' step.
+    pub fn set_clock(&mut self, clock: FixedClock) {
+        self.clock = clock;
+    }
+
+    /// Heap bytes held, roughly: the fluid's fields dominate.
+    pub fn bytes(&self) -> usize {
+        self.fluid.bytes() + self.body.points.len() * 6 * std::mem::size_of::<Vec2>()
     }
 
     /// Fixed steps per contraction cycle for `species` ([`Species::steps_per_cycle`]).

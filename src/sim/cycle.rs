@@ -1,0 +1,213 @@
+//! [`CycleCache`]: one stroke cycle of a species' slice, recorded once and replayed by
+//! phase. A jellyfish far from the camera shows the recorded shapes and swims the recorded
+//! surge without any fluid; one coming nearer resumes a live slice from the stored state
+//! for its phase, so nothing jumps.
+//!
+//! The slice is symmetric and its only inputs are the species and the stroke, so once the
+//! bell has come up to speed (ten to thirty strokes from rest) every stroke is the same
+//! one: the replay is the live slice's steady state, not an approximation of it.
+
+use super::SliceSim;
+use crate::species::{Species, SpeciesError};
+use glam::Vec2;
+
+/// Cycles run from rest before recording, at least: a bell accelerates over many strokes.
+pub const MIN_WARM_UP_CYCLES: u32 = 8;
+/// Cycles run from rest before recording, at most (a species that never settles).
+pub const MAX_WARM_UP_CYCLES: u32 = 60;
+/// Recording starts once two successive cycles swim within this fraction of each other.
+pub const SETTLED: f32 = 0.002;
+/// A full slice state is stored every this many steps; resuming between two costs at most
+/// `STATE_STRIDE - 1` steps.
+pub const STATE_STRIDE: u32 = 4;
+
+/// One step of the recorded cycle: the shape after the step, relative to the bell's
+/// centroid, and how far the step swam.
+#[derive(Clone, Debug, Default)]
+pub struct CycleFrame {
+    pub bell: Vec<Vec2>,
+    pub tentacles: [Vec<Vec2>; 2],
+    /// The bell's centroid in the slice's domain, m.
+    pub centroid: Vec2,
+    /// Distance swum along the axis in this step, m.
+    pub surge: f32,
+}
+
+/// A species' stroke cycle: a frame per fixed step, indexed by the step's place in the
+/// cycle (`stroke_steps % steps_per_cycle` after it), and full slice states to resume from.
+#[derive(Clone)]
+pub struct CycleCache {
+    species: Species,
+    frames: Vec<CycleFrame>,
+    /// States after the steps at indices `0, STATE_STRIDE, 2·STATE_STRIDE, …`.
+    states: Vec<SliceSim>,
+    rest_bell: Vec<Vec2>,
+}
+
+impl CycleCache {
+    /// Runs `species` from rest until its stroke has settled ([`SETTLED`]) and records the
+    /// next cycle: the cost of 10 to 60 cycles of one live slice (0.1 to 1 s).
+    pub fn record(species: &Species) -> Result<Self, SpeciesError> {
+        let mut sim = SliceSim::new(species)?;
+        let per_cycle = sim.clock().steps_per_cycle();
+        let mut last = f32::NAN;
+        for cycle in 1..=MAX_WARM_UP_CYCLES {
+            let start = sim.swim_distance();
+            for _ in 0..per_cycle {
+                sim.step_once();
+            }
+            let swum = sim.swim_distance() - start;
+            let settled = (swum - last).abs() <= SETTLED * swum.abs().max(1e-9);
+            if cycle >= MIN_WARM_UP_CYCLES && settled {
+                break;
+            }
+            last = swum;
+        }
+        let mut frames = vec![CycleFrame::default(); per_cycle as usize];
+        let mut states: Vec<Option<SliceSim>> =
+            vec![None; per_cycle.div_ceil(STATE_STRIDE) as usize];
+        for _ in 0..per_cycle {
+            let before = sim.swim_distance();
+            sim.step_once();
+            let index = Self::index_of(&sim);
+            frames[index as usize] = CycleFrame::capture(&sim, sim.swim_distance() - before);
+            if index % STATE_STRIDE == 0 {
+                states[(index / STATE_STRIDE) as usize] = Some(sim.clone());
+            }
+        }
+        Ok(Self {
+            species: species.clone(),
+            frames,
+            states: states.into_iter().flatten().collect(),
+            rest_bell: sim.view().rest_bell.to_vec(),
+        })
+    }
+
+    /// The species it was recorded for.
+    pub fn species(&self) -> &Species {
+        &self.species
+    }
+
+    pub fn steps_per_cycle(&self) -> u32 {
+        self.frames.len() as u32
+    }
+
+    /// A slice's place in the cycle: the index of the frame that shows its state.
+    pub fn index_of(sim: &SliceSim) -> u32 {
+        let clock = sim.clock();
+        (clock.stroke_steps() % clock.steps_per_cycle() as u64) as u32
+    }
+
+    /// The frame at `index` (wrapped into the cycle).
+    pub fn frame(&self, index: u32) -> &CycleFrame {
+        &self.frames[(index % self.steps_per_cycle()) as usize]
+    }
+
+    /// The bell at rest, as the live slice's view has it.
+    pub fn rest_bell(&self) -> &[Vec2] {
+        &self.rest_bell
+    }
+
+    /// Distance swum in one cycle, m.
+    pub fn swim_per_cycle(&self) -> f32 {
+        self.frames.iter().map(|f| f.surge).sum()
+    }
+
+    /// A live slice in the recorded state at `index`: the stored state at or before it,
+    /// stepped on to it. Its clock is the recording's; the caller sets its own.
+    pub fn resume(&self, index: u32) -> SliceSim {
+        let index = index % self.steps_per_cycle();
+        let mut sim = self.states[(index / STATE_STRIDE) as usize].clone();
+        for _ in 0..index % STATE_STRIDE {
+            sim.step_once();
+        }
+        sim
+    }
+
+    /// Heap bytes held, roughly: the stored states dominate.
+    pub fn bytes(&self) -> usize {
+        let frame =
+            |f: &CycleFrame| (f.bell.len() + f.tentacles[0].len() + f.tentacles[1].len()) * 8 + 64;
+        self.frames.iter().map(frame).sum::<usize>()
+            + self.states.iter().map(SliceSim::bytes).sum::<usize>()
+    }
+}
+
+impl CycleFrame {
+    /// The slice's shape now, relative to its bell's centroid.
+    pub fn capture(sim: &SliceSim, surge: f32) -> Self {
+        let view = sim.view();
+        let centroid = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
+        let relative = |points: &[Vec2]| points.iter().map(|p| *p - centroid).collect();
+        Self {
+            bell: relative(view.bell),
+            tentacles: [relative(view.tentacles[0]), relative(view.tentacles[1])],
+            centroid,
+            surge,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small() -> Species {
+        Species {
+            grid_resolution: 40,
+            ..Species::default()
+        }
+    }
+
+    #[test]
+    fn a_resumed_slice_continues_the_recorded_cycle() {
+        let cache = CycleCache::record(&small()).unwrap();
+        let n = cache.steps_per_cycle();
+        for index in [0, 1, STATE_STRIDE + 2, n - 1] {
+            let mut sim = cache.resume(index);
+            assert_eq!(CycleCache::index_of(&sim), index % n);
+            // Its shape is the recorded one, and the next step is the recorded next step.
+            let now = CycleFrame::capture(&sim, 0.0);
+            let recorded = cache.frame(index);
+            for (a, b) in now.bell.iter().zip(&recorded.bell) {
+                assert!(a.distance(*b) < 1e-6, "shape at {index}: {a} vs {b}");
+            }
+            let before = sim.swim_distance();
+            sim.step_once();
+            let surge = sim.swim_distance() - before;
+            let expected = cache.frame(index + 1).surge;
+            assert!(
+                (surge - expected).abs() <= 1e-3 * expected.abs().max(1e-6),
+                "surge after {index}: {surge} vs {expected}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_recorded_cycle_swims_like_the_live_slice() {
+        let species = small();
+        let cache = CycleCache::record(&species).unwrap();
+        // The live slice's next cycles, after the same warm-up.
+        let mut sim = cache.resume(0);
+        let start = sim.swim_distance();
+        for _ in 0..3 * cache.steps_per_cycle() {
+            sim.step_once();
+        }
+        let live = (sim.swim_distance() - start) / 3.0;
+        let replay = cache.swim_per_cycle();
+        assert!(replay > 0.0, "the cycle swims forwards: {replay}");
+        assert!(
+            (live - replay).abs() < 0.02 * replay,
+            "live {live} m/cycle vs replay {replay}"
+        );
+    }
+
+    #[test]
+    fn a_bad_species_is_refused() {
+        let bad = Species {
+            diameter: -1.0,
+            ..Species::default()
+        };
+        assert!(CycleCache::record(&bad).is_err());
+    }
+}
