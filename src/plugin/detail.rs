@@ -282,7 +282,7 @@ pub(super) fn change_tiers(
 ) {
     let ranked = &jellyfish;
     let levels = &settings.detail;
-    let mut changes: Vec<(Entity, Tier)> = choose(screen_sizes(&cameras, &ranked), levels)
+    let mut changes: Vec<(Entity, Tier)> = choose(screen_sizes(&cameras, ranked), levels)
         .into_iter()
         .filter(|(e, tier)| ranked.get(*e).is_ok_and(|(_, s, ..)| s.tier != *tier))
         .collect();

@@ -26,7 +26,7 @@ pub const NEW_SLICES_PER_FRAME: usize = 32;
 
 /// Builds the slice of each jellyfish whose species has loaded, in parallel, the lowest
 /// entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset starts the
-/// clock mid-stroke, which also decides which fixed ticks the slice steps on, spreading
+/// clock mid-stroke, which also decides which frames the slice steps on, spreading
 /// the load.
 fn create_slices(
     mut jellyfish: Query<(
