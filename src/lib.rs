@@ -27,6 +27,19 @@ pub use plugin::{
 pub use sim::{SliceSim, SliceView};
 pub use species::{Species, SpeciesError};
 
+/// What a game needs: `use bevy_jellyfish::prelude::*;`.
+pub mod prelude {
+    #[cfg(feature = "editor")]
+    pub use crate::JellyfishEditorPlugin;
+    #[cfg(feature = "bevy")]
+    pub use crate::plugin::{
+        AmbientWater, DetailLevels, Jellyfish, JellyfishDiagnostics, JellyfishGeometry,
+        JellyfishPlugin, JellyfishSettings, JellyfishSlice, JellyfishSystems, Pose, Resting,
+        SpeciesRejected, Steering, SurfaceMode, SwimMotion, TankWater, Tier,
+    };
+    pub use crate::species::{Species, SpeciesError};
+}
+
 /// The README's code examples, compiled and run as doctests (they include a Bevy app).
 #[cfg(all(doctest, feature = "bevy"))]
 #[doc = include_str!("../README.md")]

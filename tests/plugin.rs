@@ -1107,3 +1107,44 @@ fn pausing_virtual_time_pauses_the_jellyfish() {
     run(&mut app, 30);
     assert_ne!(at(&app), paused, "moving again");
 }
+
+#[test]
+fn an_edit_records_the_far_cycle_in_the_background() {
+    let mut app = app();
+    set_detail(&mut app, 1, 0);
+    let h = add_species(&mut app, species());
+    for x in [0.0, 5.0] {
+        app.world_mut()
+            .spawn((Jellyfish::new(h.clone()), Transform::from_xyz(x, 0.0, 0.0)));
+    }
+    run(&mut app, 10);
+    let edited = Species {
+        contraction_frequency: 1.0,
+        ..species()
+    };
+    {
+        let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
+        *assets.get_mut(&h).unwrap() = edited.clone();
+    }
+    // Frames go on while it records; the far jellyfish then plays the new cycle.
+    let mut frames = 0;
+    while app
+        .world()
+        .resource::<CycleCaches>()
+        .find(&edited)
+        .is_none()
+    {
+        assert!(frames < 2000, "the edited cycle was never recorded");
+        app.update();
+        frames += 1;
+    }
+    run(&mut app, 2);
+    let mut q = app.world_mut().query::<&JellyfishSlice>();
+    let far: Vec<_> = q
+        .iter(app.world())
+        .filter(|s| s.tier() == Tier::Far)
+        .collect();
+    assert_eq!(far.len(), 1);
+    assert_eq!(far[0].species(), Some(&edited));
+    assert!(!app.world().resource::<CycleCaches>().recording());
+}

@@ -47,6 +47,8 @@ struct Args {
     fps: f64,
     /// A scripted stir across the middle of the tank two seconds in (pictures).
     stir: bool,
+    /// Offscreen: from this frame on every jellyfish is near (a picture of a transition).
+    promote_at: Option<u32>,
     size: (u32, u32),
     /// Where surfaces are built: templates on the GPU (the bench packs them without one)
     /// or CPU meshes.
@@ -67,6 +69,7 @@ impl Args {
             frames: None,
             fps: 60.0,
             stir: false,
+            promote_at: None,
             size: (1280, 720),
             surfaces: SurfaceMode::Auto,
             detail: DetailLevels::default(),
@@ -87,6 +90,10 @@ impl Args {
                 "--screenshot" => args.screenshot = Some(value()?.into()),
                 "--bench" => args.bench = true,
                 "--stir" => args.stir = true,
+                "--promote-at" => {
+                    let v = value()?;
+                    args.promote_at = Some(v.parse().map_err(|_| bad(&v))?);
+                }
                 "--near" => {
                     let v = value()?;
                     args.detail.near = v.parse().map_err(|_| bad(&v))?;
@@ -126,7 +133,7 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--surfaces auto|templates|cpu] [--near N] [--mid N] \
+                         [--surfaces auto|templates|cpu] [--near N] [--mid N] [--promote-at FRAME] \
                          [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
                          [--bench [--frames 600] [--fps 60]]"
                     ));
@@ -219,6 +226,7 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let school = args.school;
     let frames_to_render = args.frames.unwrap_or(120);
     let (stir, surfaces, detail) = (args.stir, args.surfaces, args.detail.clone());
+    let promote_at = args.promote_at;
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
         app.add_plugins(AquariumPlugin {
             school,
@@ -227,6 +235,9 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
         });
         if stir {
             app.insert_resource(water::ScriptedStir::across_the_middle());
+        }
+        if let Some(frame) = promote_at {
+            app.add_systems(First, promote_all_at(frame));
         }
     })
     .map_err(|e| e.to_string())?;
@@ -259,4 +270,15 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     offscreen.capture(path)?;
     println!("wrote {}", path.display());
     Ok(())
+}
+
+/// A system that makes every jellyfish near from frame `at` on, all at once.
+fn promote_all_at(at: u32) -> impl FnMut(ResMut<JellyfishSettings>, Local<u32>) {
+    move |mut settings, mut frame| {
+        *frame += 1;
+        if *frame == at {
+            settings.detail.near = usize::MAX;
+            settings.detail.promotions_per_frame = usize::MAX;
+        }
+    }
 }

@@ -18,10 +18,14 @@ pub fn plugin(app: &mut App) {
 pub fn line(store: &DiagnosticsStore) -> String {
     let get = |p: &DiagnosticPath| store.get(p).and_then(|d| d.smoothed()).unwrap_or(0.0);
     format!(
-        "{:.1} fps ({:.1} ms/frame), {} jellyfish, simulation {:.2} ms, meshing {:.2} ms per frame",
+        "{:.1} fps ({:.1} ms/frame), {} jellyfish ({} near, {} mid, {} far), simulation {:.2} ms, \
+         meshing {:.2} ms per frame",
         get(&FrameTimeDiagnosticsPlugin::FPS),
         get(&FrameTimeDiagnosticsPlugin::FRAME_TIME),
         get(&JellyfishDiagnostics::COUNT) as u32,
+        get(&JellyfishDiagnostics::NEAR) as u32,
+        get(&JellyfishDiagnostics::MID) as u32,
+        get(&JellyfishDiagnostics::FAR) as u32,
         get(&JellyfishDiagnostics::SIMULATION),
         get(&JellyfishDiagnostics::MESHING),
     )

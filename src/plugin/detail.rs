@@ -21,6 +21,7 @@ use crate::sim::cycle::{CycleCache, CycleFrame};
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
+use bevy::tasks::{AsyncComputeTaskPool, Task, block_on};
 use std::sync::Arc;
 
 pub(super) fn plugin(app: &mut App) {
@@ -102,6 +103,8 @@ pub(crate) struct Replay {
     pub clock: FixedClock,
     /// Distance swum, m.
     pub swim: f64,
+    /// An edited species whose cycle is being recorded: the old cycle plays until then.
+    pub wanted: Option<Species>,
 }
 
 impl Replay {
@@ -136,11 +139,14 @@ impl Replay {
 }
 
 /// The recorded cycle of every species (and its compact-box variant) a far or resuming
-/// jellyfish has needed. Recording one costs 10 to 60 cycles of one slice; it is done once
-/// per species, when first needed, and again after an edit.
+/// jellyfish has needed. Recording one costs 10 to 60 cycles of one slice (0.1–0.4 s): it
+/// is done when first needed, in that frame, so which jellyfish are far is the same in
+/// every run; after an edit it is recorded in the background while far jellyfish play the
+/// old cycle, so dragging an editor slider does not stall the app.
 #[derive(Resource, Default)]
 pub struct CycleCaches {
     caches: Vec<Arc<CycleCache>>,
+    recording: Vec<(Species, Task<Option<CycleCache>>)>,
 }
 
 impl CycleCaches {
@@ -152,6 +158,39 @@ impl CycleCaches {
         let cache = Arc::new(CycleCache::record(species).ok()?);
         self.caches.push(cache.clone());
         Some(cache)
+    }
+
+    /// The cycle of `species` if recorded; if not, starts recording it in the background
+    /// (see [`Self::collect`]).
+    pub fn request(&mut self, species: &Species) -> Option<Arc<CycleCache>> {
+        if let Some(c) = self.find(species) {
+            return Some(c);
+        }
+        if !self.recording.iter().any(|(s, _)| s == species) {
+            let record = species.clone();
+            let task =
+                AsyncComputeTaskPool::get().spawn(async move { CycleCache::record(&record).ok() });
+            self.recording.push((species.clone(), task));
+        }
+        None
+    }
+
+    /// Keeps the cycles recorded in the background that have finished.
+    pub fn collect(&mut self) {
+        let (done, running): (Vec<_>, Vec<_>) = std::mem::take(&mut self.recording)
+            .into_iter()
+            .partition(|(_, task)| task.is_finished());
+        self.recording = running;
+        for (_, task) in done {
+            if let Some(cache) = block_on(task) {
+                self.caches.push(Arc::new(cache));
+            }
+        }
+    }
+
+    /// Whether any cycle is still being recorded in the background.
+    pub fn recording(&self) -> bool {
+        !self.recording.is_empty()
     }
 
     /// The cycle of `species`, if recorded.
@@ -280,6 +319,13 @@ pub(super) fn change_tiers(
     mut caches: ResMut<CycleCaches>,
     timings: Res<JellyfishTimings>,
 ) {
+    caches.collect();
+    for (_, mut slice, ..) in &mut jellyfish {
+        let wanted = slice.replay.as_ref().and_then(|r| r.wanted.as_ref());
+        if let Some(cache) = wanted.and_then(|w| caches.find(w)) {
+            switch_cycle(&mut slice, cache);
+        }
+    }
     let ranked = &jellyfish;
     let levels = &settings.detail;
     let mut changes: Vec<(Entity, Tier)> = choose(screen_sizes(&cameras, ranked), levels)
@@ -345,6 +391,30 @@ pub(super) fn change_tiers(
     caches.retain(&in_use);
 }
 
+/// A far jellyfish takes another cycle (its species was edited), at the same phase.
+pub(super) fn switch_cycle(slice: &mut JellyfishSlice, cache: Arc<CycleCache>) {
+    let Some(replay) = slice.replay.as_mut() else {
+        return;
+    };
+    let species = cache.species();
+    replay.clock = replay
+        .clock
+        .retimed(species.period(), species.steps_per_cycle());
+    let mut now = Snapshot::default();
+    let time = replay.clock.time();
+    now.copy_frame(cache.frame(replay.index()), time, replay.swim as f32);
+    slice.history.change_tier(&now, time, fade(&replay.clock));
+    slice.rest_bell = cache.rest_bell().to_vec();
+    replay.cache = cache;
+    replay.wanted = None;
+    slice.anchor = None;
+}
+
+/// Steps over which a change of shape fades out: a quarter stroke.
+fn fade(clock: &FixedClock) -> u32 {
+    (clock.steps_per_cycle() / 4).max(1)
+}
+
 /// Moves one jellyfish to `tier`, continuing from where it is in its stroke.
 fn move_to(
     slice: &mut JellyfishSlice,
@@ -359,12 +429,13 @@ fn move_to(
     let clock = clock.retimed(species.period(), species.steps_per_cycle());
     let index = (clock.stroke_steps() % clock.steps_per_cycle() as u64) as u32;
     let mut now = Snapshot::default();
-    let fade = (clock.steps_per_cycle() / 4).max(1);
+    let fade = fade(&clock);
     if tier == Tier::Far {
         let replay = Replay {
             cache: cache.clone(),
             clock,
             swim: 0.0,
+            wanted: None,
         };
         now.copy_frame(cache.frame(index), replay.clock.time(), 0.0);
         motion.swum = 0.0;

@@ -3,7 +3,7 @@
 use super::JellyfishSystems;
 use super::asset::SpeciesRejected;
 use super::components::{Jellyfish, JellyfishSlice, Pose, SwimMotion};
-use super::detail::{CycleCaches, tier_species};
+use super::detail::{CycleCaches, switch_cycle, tier_species};
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::HashSet;
@@ -167,21 +167,10 @@ fn apply(
         slice.rest_bell = sim.view().rest_bell.to_vec();
         motion.swum = sim.swim_distance();
     } else if let Some(replay) = slice.replay.as_mut() {
-        let Some(cache) = caches.get(&simulated) else {
-            return species.validate();
-        };
-        let retimed = replay
-            .clock
-            .retimed(species.period(), species.steps_per_cycle());
-        if retimed != replay.clock || cache.rest_bell().len() != slice.rest_bell.len() {
-            replay.clock = retimed;
-            let mut now = super::components::Snapshot::default();
-            let frame = cache.frame(replay.index());
-            now.copy_frame(frame, replay.clock.time(), replay.swim as f32);
-            slice.history.change_tier(&now, replay.clock.time(), 1);
+        match caches.request(&simulated) {
+            Some(cache) => switch_cycle(slice, cache),
+            None => replay.wanted = Some(simulated),
         }
-        slice.rest_bell = cache.rest_bell().to_vec();
-        replay.cache = cache;
     }
     Ok(())
 }

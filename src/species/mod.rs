@@ -15,7 +15,7 @@ use std::fmt;
 /// paper say so; the rest are choices of ours, each explained where it is used.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct Species {
     /// Display name.
     pub name: String,
@@ -186,6 +186,62 @@ impl Species {
             glow_color: [0.35, 0.55, 1.0],
             glow: 0.6,
         }
+    }
+
+    /// The crystal jelly (`assets/species/aequorea.ron`): a wide, flat disc with a hundred
+    /// long fine tentacles, slow strokes, green glow.
+    pub fn aequorea() -> Self {
+        Self {
+            name: "Aequorea".into(),
+            diameter: 0.06,
+            height: 0.02,
+            thickness: 0.005,
+            margin_thickness_ratio: 0.25,
+            contraction_frequency: 0.6,
+            contraction_ratio: 0.56,
+            tentacle_count: 100,
+            tentacle_length: 0.045,
+            tentacle_radius: 0.00025,
+            structural_scale: 0.25,
+            structural_frequency: 16.0,
+            structural_abs: true,
+            compression_frequency: 12.0,
+            unstructured_scale: 1.5,
+            bell_color: [0.8, 0.95, 0.9, 0.25],
+            glow_color: [0.3, 1.0, 0.45],
+            glow: 0.9,
+            ..Self::aurelia()
+        }
+    }
+
+    /// A small hydromedusa (`assets/species/sarsia.ron`): a tall bell with four long
+    /// tentacles, quick strokes.
+    pub fn sarsia() -> Self {
+        Self {
+            name: "Sarsia".into(),
+            diameter: 0.016,
+            height: 0.022,
+            thickness: 0.0025,
+            margin_thickness_ratio: 0.4,
+            contraction_frequency: 1.4,
+            contraction_ratio: 0.5,
+            contraction_duty: 0.3,
+            tentacle_count: 4,
+            tentacle_length: 0.025,
+            tentacle_radius: 0.0003,
+            structural_scale: 0.2,
+            structural_frequency: 4.0,
+            unstructured_scale: 1.0,
+            bell_color: [0.95, 0.8, 0.85, 0.3],
+            glow_color: [1.0, 0.35, 0.5],
+            glow: 0.5,
+            ..Self::aurelia()
+        }
+    }
+
+    /// Every shipped species, as in `assets/species/`.
+    pub fn presets() -> [Species; 3] {
+        [Self::aurelia(), Self::aequorea(), Self::sarsia()]
     }
 
     /// The paper's numerics (its Fig. 12 and section 3.2): grid 100 over a box ten
@@ -388,6 +444,31 @@ impl fmt::Display for Species {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn each_preset_is_its_shipped_file() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+        for preset in Species::presets() {
+            let file = dir.join(format!("{}.ron", preset.name.to_lowercase()));
+            let text = std::fs::read_to_string(&file).expect("shipped species file");
+            assert_eq!(
+                Species::from_ron(&text).unwrap(),
+                preset,
+                "{}",
+                file.display()
+            );
+            preset.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn an_unknown_field_is_an_error_naming_it_and_where() {
+        let error = Species::from_ron("(\n    name: \"X\",\n    diamter: 0.05,\n)").unwrap_err();
+        let text = error.to_string();
+        assert!(text.contains("diamter"), "{text}");
+        assert!(text.contains("3:"), "names the line: {text}");
+    }
+
     use super::*;
 
     #[test]

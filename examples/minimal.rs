@@ -1,0 +1,31 @@
+//! The least a game needs: the plugin, a camera, a light and one moon jelly, from the
+//! preset in code (no asset files).
+//!
+//! `cargo run --release --example minimal`
+
+use bevy::prelude::*;
+use bevy_jellyfish::prelude::*;
+
+fn main() {
+    App::new()
+        .add_plugins((DefaultPlugins, JellyfishPlugin::default()))
+        .add_systems(Startup, setup)
+        .run();
+}
+
+fn setup(mut commands: Commands, mut species: ResMut<Assets<Species>>) {
+    commands.spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.0, 1.0, 4.0).looking_at(Vec3::new(0.0, 1.0, 0.0), Vec3::Y),
+    ));
+    commands.spawn((
+        DirectionalLight::default(),
+        Transform::from_xyz(1.0, 3.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    // A moon jelly 4 cm across, drawn 30 times life size; it swims along its local +Y.
+    let aurelia = species.add(Species::aurelia());
+    commands.spawn((
+        Jellyfish::new(aurelia),
+        Transform::from_xyz(0.0, 0.5, 0.0).with_scale(Vec3::splat(30.0)),
+    ));
+}
