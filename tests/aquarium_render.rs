@@ -144,7 +144,9 @@ fn jellyfish_show_up_in_the_tank() {
         empty.mean_brightness()
     );
 
-    offscreen.world_mut().resource_mut::<School>().per_species = PER_SPECIES;
+    // The school at 20 scene units per metre: enough of them to stand out from the snow.
+    let per_species = 3 * PER_SPECIES;
+    offscreen.world_mut().resource_mut::<School>().per_species = per_species;
     let school = shot(&mut offscreen, 20, "school.png");
     let count = offscreen
         .world()
@@ -152,7 +154,7 @@ fn jellyfish_show_up_in_the_tank() {
         .get(&JellyfishDiagnostics::COUNT)
         .and_then(|d| d.value())
         .unwrap_or(0.0);
-    assert_eq!(count as usize, 3 * PER_SPECIES, "jellyfish swimming");
+    assert_eq!(count as usize, 3 * per_species, "jellyfish swimming");
 
     let noise = later.changed_from(&empty);
     let signal = school.changed_from(&later);

@@ -1148,3 +1148,45 @@ fn an_edit_records_the_far_cycle_in_the_background() {
     assert_eq!(far[0].species(), Some(&edited));
     assert!(!app.world().resource::<CycleCaches>().recording());
 }
+
+#[test]
+fn a_promoted_jellyfish_draws_what_it_would_have_drawn_far() {
+    // Two identical apps of far jellyfish; in one, all become near at once.
+    let make = || {
+        let mut app = app();
+        set_detail(&mut app, 0, 0);
+        let h = add_species(&mut app, species());
+        let e: Vec<Entity> = (0..4)
+            .map(|i| {
+                app.world_mut()
+                    .spawn((
+                        Jellyfish::new(h.clone()).with_phase(i as f32 * 0.23),
+                        Transform::from_xyz(i as f32, 0.0, 0.0).with_scale(Vec3::splat(10.0)),
+                    ))
+                    .id()
+            })
+            .collect();
+        run(&mut app, 100);
+        (app, e)
+    };
+    let (mut far, ef) = make();
+    let (mut promoted, ep) = make();
+    set_detail(&mut promoted, 100, 0);
+    // The live slice resumes the recorded state, so until the recorded cycle ends the
+    // frames are the same.
+    for _ in 0..4 {
+        far.update();
+        promoted.update();
+        for (a, b) in ef.iter().zip(&ep) {
+            assert_eq!(slice(&promoted, *b).tier(), Tier::Near);
+            let shape = umbrella_positions(&far, *a)
+                .iter()
+                .zip(&umbrella_positions(&promoted, *b))
+                .map(|(p, q)| Vec3::from(*p).distance(Vec3::from(*q)))
+                .fold(0.0f32, f32::max);
+            let at = |app: &App, e: Entity| app.world().get::<Transform>(e).unwrap().translation;
+            assert!(shape < 1e-6, "shape differs by {shape}");
+            assert!(at(&far, *a).distance(at(&promoted, *b)) < 1e-6);
+        }
+    }
+}

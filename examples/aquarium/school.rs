@@ -11,17 +11,18 @@ use bevy::prelude::*;
 use bevy_jellyfish::plugin::{JellyfishSlice, Steering, SwimMotion};
 use bevy_jellyfish::{Jellyfish, JellyfishSystems, Species};
 
-/// Scene units per metre: a 40 mm moon jelly is 1.2 units across.
-pub const SCALE: f32 = 30.0;
+/// Scene units per metre: a 40 mm moon jelly is 0.8 units across, so a school of
+/// hundreds has room in the tank.
+pub const SCALE: f32 = 20.0;
 /// The species shipped in `assets/species/`, with a radius that keeps neighbours apart
 /// (bell and tentacles, scene units).
-pub const SPECIES: [(&str, f32); 3] = [("aurelia", 0.9), ("aequorea", 1.1), ("sarsia", 1.0)];
+pub const SPECIES: [(&str, f32); 3] = [("aurelia", 0.6), ("aequorea", 0.75), ("sarsia", 0.65)];
 /// Steering starts this far from a wall, scene units.
 const MARGIN: f32 = 2.5;
 /// Below and above these heights jellyfish turn away from the floor (felt early: the
 /// tentacles hang a body length below the bell) and from the surface; they start between.
-const FLOOR_ZONE: f32 = 3.0;
-const SURFACE_ZONE: f32 = 3.5;
+const FLOOR_ZONE: f32 = 2.0;
+const SURFACE_ZONE: f32 = 2.0;
 
 /// Radians turned per bell diameter surged while contracting: twice the plugin's default,
 /// so a school turns away from the glass within two or three strokes.
@@ -164,7 +165,7 @@ fn steer(
     // Where they are in the simulation (not where the last frame drew them).
     let mut all: Vec<(Vec3, f32)> = swimmers
         .iter()
-        .filter(|(_, slice, ..)| slice.sim().is_some())
+        .filter(|(_, slice, ..)| slice.started())
         .map(|(s, _, motion, _)| (motion.pose.position, s.radius))
         .collect();
     // The same order every run: the steering is part of the replay.
