@@ -216,8 +216,16 @@ impl CycleCaches {
     }
 
     /// Forgets cycles no jellyfish uses (edited species), keeping `in_use`.
+    /// Recordings of species no jellyfish has any more (an editor slider dragged on) are
+    /// dropped, which cancels them.
     fn retain(&mut self, in_use: &[Species]) {
         self.caches.retain(|c| in_use.contains(c.species()));
+        self.recording.retain(|(s, _)| in_use.contains(s));
+    }
+
+    /// Whether the cycle of `species` is being recorded in the background.
+    pub fn is_recording(&self, species: &Species) -> bool {
+        self.recording.iter().any(|(s, _)| s == species)
     }
 
     /// Heap bytes held.
@@ -319,6 +327,18 @@ pub(super) fn change_tiers(
     mut caches: ResMut<CycleCaches>,
     timings: Res<JellyfishTimings>,
 ) {
+    // Drop cycles of species no jellyfish has any more (after edits).
+    let mut distinct: Vec<&Species> = Vec::new();
+    for (_, slice, ..) in &jellyfish {
+        if !distinct.contains(&&slice.species) {
+            distinct.push(&slice.species);
+        }
+    }
+    let in_use: Vec<Species> = distinct
+        .into_iter()
+        .flat_map(|s| [s.clone(), tier_species(s, Tier::Mid)])
+        .collect();
+    caches.retain(&in_use);
     caches.collect();
     for (_, mut slice, ..) in &mut jellyfish {
         let wanted = slice.replay.as_ref().and_then(|r| r.wanted.as_ref());
@@ -358,6 +378,9 @@ pub(super) fn change_tiers(
             variants.push((slice.species.clone(), *tier, simulated));
         }
     }
+    // A species being recorded in the background (just edited) changes tier once it is
+    // ready, instead of recording it again here and stalling the frame.
+    variants.retain(|(.., simulated)| !caches.is_recording(simulated));
     caches.prepare(variants.iter().map(|v| v.2.clone()).collect());
     let plan: HashMap<Entity, (Tier, Arc<CycleCache>)> = changes
         .iter()
@@ -377,18 +400,6 @@ pub(super) fn change_tiers(
                 move_to(&mut slice, &mut motion, *tier, cache.clone());
             }
         });
-    // Drop cycles of species no jellyfish has any more (after edits).
-    let mut distinct: Vec<&Species> = Vec::new();
-    for (_, slice, ..) in &jellyfish {
-        if !distinct.contains(&&slice.species) {
-            distinct.push(&slice.species);
-        }
-    }
-    let in_use: Vec<Species> = distinct
-        .into_iter()
-        .flat_map(|s| [s.clone(), tier_species(s, Tier::Mid)])
-        .collect();
-    caches.retain(&in_use);
 }
 
 /// A far jellyfish takes another cycle (its species was edited), at the same phase.

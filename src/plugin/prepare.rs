@@ -154,6 +154,8 @@ fn apply(
     let simulated = tier_species(species, slice.tier);
     slice.anchor = None;
     if let Some(sim) = slice.sim.as_mut() {
+        // Its cycle, for when it moves away: recorded in the background from now.
+        caches.request(species);
         let clock = sim.clock().clone();
         sim.set_species(&simulated)?;
         let topology = slice
