@@ -31,7 +31,7 @@ fn main() {
             ])),
         ))
         .insert_resource(ClearColor(Color::srgb(0.01, 0.03, 0.07)))
-        .insert_resource(SpeciesFile(format!("species/{name}.ron")))
+        .insert_resource(SpeciesFile(format!("species/{name}.species.ron")))
         .init_resource::<Overlay>()
         .add_systems(Startup, setup)
         .add_systems(Update, (orbit, toggle_overlay, draw_overlay).chain())

@@ -281,8 +281,9 @@ fn scratch_file(name: &str) -> PathBuf {
 #[test]
 fn save_writes_a_file_that_loads_back_and_keeps_its_comments() {
     let (mut app, _, _) = app();
-    let path = scratch_file("saved.ron");
-    let shipped = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/species/aequorea.ron");
+    let path = scratch_file("saved.species.ron");
+    let shipped =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/species/aequorea.species.ron");
     std::fs::copy(&shipped, &path).unwrap();
     let draft = edit(&mut app, |editor, assets| {
         editor.draft_mut().name = "Edited".into();
@@ -314,7 +315,7 @@ fn save_writes_a_file_that_loads_back_and_keeps_its_comments() {
 #[test]
 fn an_invalid_draft_is_not_saved() {
     let (mut app, _, _) = app();
-    let path = scratch_file("invalid.ron");
+    let path = scratch_file("invalid.species.ron");
     std::fs::write(&path, "(name: \"Kept\")").unwrap();
     edit(&mut app, |editor, assets| {
         editor.draft_mut().contraction_ratio = 3.0;

@@ -351,13 +351,16 @@ fn wait(app: &mut App, what: &str, mut done: impl FnMut(&mut App) -> bool) {
 #[test]
 fn an_invalid_species_file_is_refused_naming_the_field() {
     let dir = scratch_dir("reload");
-    let file = dir.join("test.ron");
+    let file = dir.join("test.species.ron");
     std::fs::write(&file, "(name: \"Test\", tentacle_count: 8)").unwrap();
     let mut app = app_with(AssetPlugin {
         file_path: dir.to_string_lossy().into_owned(),
         ..default()
     });
-    let h: Handle<Species> = app.world().resource::<AssetServer>().load("test.ron");
+    let h: Handle<Species> = app
+        .world()
+        .resource::<AssetServer>()
+        .load("test.species.ron");
     let e = app
         .world_mut()
         .spawn((Jellyfish::new(h.clone()), Transform::default()))
@@ -366,7 +369,9 @@ fn an_invalid_species_file_is_refused_naming_the_field() {
 
     // A bad file: Bevy logs the loader's error (naming the field), we say what happens.
     std::fs::write(&file, "(name: \"Bad\", diameter: -0.04)").unwrap();
-    app.world().resource::<AssetServer>().reload("test.ron");
+    app.world()
+        .resource::<AssetServer>()
+        .reload("test.species.ron");
     let mut refused = Vec::new();
     wait(&mut app, "the refusal", |app| {
         refused.extend(rejections(app));
@@ -390,7 +395,9 @@ fn an_invalid_species_file_is_refused_naming_the_field() {
 
     // A good edit of the file reaches the living jellyfish (hot reload does this on save).
     std::fs::write(&file, "(name: \"Edited\", tentacle_count: 8, glow: 2.0)").unwrap();
-    app.world().resource::<AssetServer>().reload("test.ron");
+    app.world()
+        .resource::<AssetServer>()
+        .reload("test.species.ron");
     wait(&mut app, "the edit", |app| {
         slice(app, e).species().unwrap().name == "Edited"
     });
@@ -416,7 +423,14 @@ fn shipped_species_validate_differ_and_swim() {
         .iter()
         .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
-    assert_eq!(names, ["aequorea.ron", "aurelia.ron", "sarsia.ron"]);
+    assert_eq!(
+        names,
+        [
+            "aequorea.species.ron",
+            "aurelia.species.ron",
+            "sarsia.species.ron"
+        ]
+    );
     let mut all = Vec::new();
     for file in &files {
         let text = std::fs::read_to_string(file).unwrap();
@@ -443,7 +457,11 @@ fn shipped_species_validate_differ_and_swim() {
     let [aequorea, aurelia, sarsia] = &all[..] else {
         unreachable!()
     };
-    assert_eq!(aurelia, &Species::aurelia(), "aurelia.ron is the defaults");
+    assert_eq!(
+        aurelia,
+        &Species::aurelia(),
+        "aurelia.species.ron is the defaults"
+    );
     let flatness = |s: &Species| s.height / s.diameter;
     assert!(
         flatness(aequorea) < 0.6 * flatness(aurelia),
@@ -470,7 +488,7 @@ fn shipped_species_load_through_the_asset_server() {
         .map(|n| {
             app.world()
                 .resource::<AssetServer>()
-                .load(format!("species/{n}.ron"))
+                .load(format!("species/{n}.species.ron"))
         })
         .collect();
     wait(&mut app, "three species", |app| {

@@ -369,7 +369,10 @@ fn shipped() -> Vec<Species> {
     ["aequorea", "aurelia", "sarsia"]
         .iter()
         .map(|name| {
-            let path = format!("{}/assets/species/{name}.ron", env!("CARGO_MANIFEST_DIR"));
+            let path = format!(
+                "{}/assets/species/{name}.species.ron",
+                env!("CARGO_MANIFEST_DIR")
+            );
             Species::from_ron(&std::fs::read_to_string(path).unwrap()).unwrap()
         })
         .collect()

@@ -301,7 +301,9 @@ fn species_files_present() -> Result<(), String> {
         })
         .unwrap_or_default();
     for (name, _) in school::SPECIES {
-        let path = root.join("assets/species").join(format!("{name}.ron"));
+        let path = root
+            .join("assets/species")
+            .join(format!("{name}.species.ron"));
         if !path.is_file() {
             return Err(format!(
                 "no species file at {}: run it from the repository (`cargo run --release \

@@ -118,7 +118,7 @@ fn respawn(
         .collect();
     let radii: Vec<f32> = members.iter().map(|(_, r)| *r).collect();
     for ((name, radius), at) in members.iter().zip(positions(&radii, &mut rng)) {
-        let species: Handle<Species> = assets.load(format!("species/{name}.ron"));
+        let species: Handle<Species> = assets.load(format!("species/{name}.species.ron"));
         // Mostly upright, leaning up to ~25 degrees in a random direction.
         let lean = Quat::from_rotation_y(rng.range(0.0, std::f32::consts::TAU))
             * Quat::from_rotation_x(rng.range(0.0, 0.45));

@@ -15,7 +15,7 @@ impl VisitAssetDependencies for Species {
 
 impl Asset for Species {}
 
-/// Loads `*.ron` species files; a file that does not parse or validate fails to load, with
+/// Loads `*.species.ron` files (a game's other `.ron` files are its own); a file that does not parse or validate fails to load, with
 /// an error naming the field. On a reload the asset keeps its last valid value.
 #[derive(Default, TypePath)]
 pub struct SpeciesLoader;
@@ -41,7 +41,7 @@ impl AssetLoader for SpeciesLoader {
     }
 
     fn extensions(&self) -> &[&str] {
-        &["ron"]
+        &["species.ron"]
     }
 }
 

@@ -6,7 +6,7 @@
 //! use bevy_jellyfish::{Jellyfish, JellyfishPlugin, Species};
 //!
 //! fn spawn(mut commands: Commands, assets: Res<AssetServer>) {
-//!     let species: Handle<Species> = assets.load("species/aurelia.ron");
+//!     let species: Handle<Species> = assets.load("species/aurelia.species.ron");
 //!     commands.spawn((Jellyfish::new(species), Transform::from_xyz(0.0, 0.0, 0.0)));
 //! }
 //!

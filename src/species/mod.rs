@@ -188,7 +188,7 @@ impl Species {
         }
     }
 
-    /// The crystal jelly (`assets/species/aequorea.ron`): a wide, flat disc with a hundred
+    /// The crystal jelly (`assets/species/aequorea.species.ron`): a wide, flat disc with a hundred
     /// long fine tentacles, slow strokes, green glow.
     pub fn aequorea() -> Self {
         Self {
@@ -214,7 +214,7 @@ impl Species {
         }
     }
 
-    /// A small hydromedusa (`assets/species/sarsia.ron`): a tall bell with four long
+    /// A small hydromedusa (`assets/species/sarsia.species.ron`): a tall bell with four long
     /// tentacles, quick strokes.
     pub fn sarsia() -> Self {
         Self {
@@ -449,7 +449,7 @@ mod tests {
     fn each_preset_is_its_shipped_file() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
         for preset in Species::presets() {
-            let file = dir.join(format!("{}.ron", preset.name.to_lowercase()));
+            let file = dir.join(format!("{}.species.ron", preset.name.to_lowercase()));
             let text = std::fs::read_to_string(&file).expect("shipped species file");
             assert_eq!(
                 Species::from_ron(&text).unwrap(),
