@@ -34,8 +34,9 @@ pub mod prelude {
     #[cfg(feature = "bevy")]
     pub use crate::plugin::{
         AmbientWater, DetailLevels, Jellyfish, JellyfishDiagnostics, JellyfishGeometry,
-        JellyfishPlugin, JellyfishSettings, JellyfishSlice, JellyfishSystems, Pose, Resting,
-        SpeciesRejected, Steering, SurfaceMode, SwimMotion, TankWater, Tier,
+        JellyfishPlugin, JellyfishSettings, JellyfishSlice, JellyfishStarted, JellyfishSystems,
+        Pose, Resting, SliceRecovered, SpeciesRejected, Steering, StrokeStarted, SurfaceMode,
+        SwimMotion, TankWater, Tier,
     };
     pub use crate::species::{Species, SpeciesError};
 }

@@ -1208,3 +1208,40 @@ fn a_promoted_jellyfish_draws_what_it_would_have_drawn_far() {
         }
     }
 }
+
+#[derive(Resource, Default)]
+struct SeenEvents {
+    started: Vec<Entity>,
+    strokes: Vec<(Entity, u64)>,
+}
+
+#[test]
+fn observers_hear_a_jellyfish_start_and_each_stroke_begin() {
+    use bevy_jellyfish::plugin::{JellyfishStarted, StrokeStarted};
+    let (mut app, _, e) = one_jellyfish();
+    app.init_resource::<SeenEvents>()
+        .add_observer(|s: On<JellyfishStarted>, mut seen: ResMut<SeenEvents>| {
+            seen.started.push(s.entity)
+        })
+        .add_observer(|s: On<StrokeStarted>, mut seen: ResMut<SeenEvents>| {
+            seen.strokes.push((s.entity, s.cycle))
+        });
+    let period = species().period();
+    run(&mut app, (3.5 * period * 60.0).round() as usize);
+    let seen = app.world().resource::<SeenEvents>();
+    assert_eq!(seen.started, [e]);
+    assert!(
+        (3..=4).contains(&seen.strokes.len()),
+        "one stroke per period: {:?}",
+        seen.strokes
+    );
+    for pair in seen.strokes.windows(2) {
+        assert_eq!(
+            pair[1].1,
+            pair[0].1 + 1,
+            "strokes count up: {:?}",
+            seen.strokes
+        );
+        assert_eq!(pair[0].0, e);
+    }
+}

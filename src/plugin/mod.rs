@@ -27,6 +27,7 @@ mod components;
 mod culling;
 mod detail;
 mod diagnostics;
+mod events;
 mod geometry;
 mod material;
 mod meshing;
@@ -45,6 +46,7 @@ pub use components::{
 };
 pub use detail::{CycleCaches, DetailLevels, Tier, tier_species};
 pub use diagnostics::JellyfishDiagnostics;
+pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
 pub use prepare::NEW_SLICES_PER_FRAME;

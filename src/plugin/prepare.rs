@@ -4,6 +4,7 @@ use super::JellyfishSystems;
 use super::asset::SpeciesRejected;
 use super::components::{Jellyfish, JellyfishSlice, Pose, SwimMotion};
 use super::detail::{CycleCaches, switch_cycle, tier_species};
+use super::events::{Lifecycle, LifecycleQueue};
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::HashSet;
@@ -40,6 +41,7 @@ fn create_slices(
     mut edits: MessageReader<AssetEvent<Species>>,
     mut refused: Local<Refused>,
     mut rejected: MessageWriter<SpeciesRejected>,
+    events: Res<LifecycleQueue>,
 ) {
     let Refused { queue, failed } = &mut *refused;
     // A refused species is retried only after an edit, so the error is logged once.
@@ -76,6 +78,7 @@ fn create_slices(
                         ..default()
                     };
                     slice.start(sim, simulated.clone(), seed, pose);
+                    events.push(entity, Lifecycle::Started);
                 }
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
             }

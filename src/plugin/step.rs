@@ -11,6 +11,7 @@ use super::JellyfishSystems;
 use super::components::{JellyfishSlice, Pose, Resting, SwimMotion};
 use super::detail::Replay;
 use super::diagnostics::JellyfishTimings;
+use super::events::{Lifecycle, LifecycleQueue, trigger_lifecycle};
 use super::steering::Steering;
 use super::tank::{TankWater, step_tank};
 use super::water::AmbientWater;
@@ -20,8 +21,14 @@ use std::time::Instant;
 
 pub(super) fn plugin(app: &mut App) {
     app.init_resource::<AmbientWater>()
+        .init_resource::<LifecycleQueue>()
         .add_systems(FixedUpdate, (step_tank, collect_jets).chain())
-        .add_systems(PostUpdate, step_slices.in_set(JellyfishSystems::StepSlices));
+        .add_systems(
+            PostUpdate,
+            (step_slices, trigger_lifecycle)
+                .chain()
+                .in_set(JellyfishSystems::StepSlices),
+        );
 }
 
 /// Adds the frame's time to every slice's clock; a slice takes the fixed steps of its
@@ -32,6 +39,7 @@ pub(super) fn plugin(app: &mut App) {
 #[allow(clippy::type_complexity)]
 fn step_slices(
     mut jellyfish: Query<(
+        Entity,
         &mut JellyfishSlice,
         &mut SwimMotion,
         &Transform,
@@ -41,6 +49,7 @@ fn step_slices(
     water: Res<AmbientWater>,
     time: Res<Time<Virtual>>,
     timings: Res<JellyfishTimings>,
+    events: Res<LifecycleQueue>,
 ) {
     let (frame, now) = (time.delta_secs_f64(), time.elapsed_secs_f64());
     if frame <= 0.0 {
@@ -48,9 +57,8 @@ fn step_slices(
     }
     let (elapsed, before) = (time.elapsed(), time.elapsed() - time.delta());
     let water = &*water;
-    jellyfish
-        .par_iter_mut()
-        .for_each(|(mut slice, mut motion, transform, steering, resting)| {
+    jellyfish.par_iter_mut().for_each(
+        |(entity, mut slice, mut motion, transform, steering, resting)| {
             let start = Instant::now();
             let slice = &mut *slice;
             let motion = &mut *motion;
@@ -72,6 +80,7 @@ fn step_slices(
                 if sim.resting() != resting {
                     sim.set_resting(resting);
                 }
+                let recoveries = sim.recoveries();
                 sim.advance_until_with(until, |sim| {
                     let clock = sim.clock();
                     let stroke = Stroke {
@@ -85,7 +94,13 @@ fn step_slices(
                     travel.step(&stroke, motion);
                     stepped += stroke.step;
                     history.record(clock, frame, motion.pose, |s| s.capture(sim));
+                    if stroke_begins(clock, stroke.resting) {
+                        events.push(entity, Lifecycle::Stroke(clock.cycle()));
+                    }
                 });
+                if sim.recoveries() > recoveries {
+                    events.push(entity, Lifecycle::Recovered(sim.recoveries()));
+                }
             } else if let Some(replay) = slice.replay.as_mut() {
                 replay.advance_until(until, resting, |replay: &Replay, cycle| {
                     let clock = &replay.clock;
@@ -103,6 +118,9 @@ fn step_slices(
                     history.record(clock, frame, motion.pose, |s| {
                         s.copy_frame(cycle, time, swim)
                     });
+                    if stroke_begins(clock, resting) {
+                        events.push(entity, Lifecycle::Stroke(clock.cycle()));
+                    }
                 });
             } else {
                 return;
@@ -111,7 +129,16 @@ fn step_slices(
                 motion.swim_speed = (motion.swum - swum_before) * transform.scale.y / stepped;
             }
             timings.add_simulation(start.elapsed());
-        });
+        },
+    );
+}
+
+/// Whether the step just taken ended a cycle: the next one contracts.
+fn stroke_begins(clock: &crate::sim::clock::FixedClock, resting: bool) -> bool {
+    !resting
+        && clock
+            .stroke_steps()
+            .is_multiple_of(clock.steps_per_cycle() as u64)
 }
 
 /// What one step of a slice, live or replayed, tells the travel.
