@@ -8,8 +8,12 @@
 //!
 //! `cargo run --release --no-default-features --example lod -- [cycles]`
 
+#[path = "common/species.rs"]
+mod common;
+
 use bevy_jellyfish::Species;
 use bevy_jellyfish::sim::{CycleCache, SliceSim};
+use common::species_files;
 use std::time::Instant;
 
 fn main() {
@@ -17,13 +21,7 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(6);
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("assets/species")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
+    let files = species_files();
     println!(
         "species    tier             grid  box D  D/cycle  vs near  ms per sim. s  recorded in  cycle MB"
     );

@@ -8,7 +8,11 @@
 //!
 //! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|all] [--from 10] [--to 30]`
 
+#[path = "common/species.rs"]
+mod common;
+
 use bevy_jellyfish::{SliceSim, Species};
+use common::shipped_species;
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -75,23 +79,6 @@ fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
         })
         .collect();
     Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
-}
-
-fn shipped() -> Vec<Species> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("assets/species")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.to_string_lossy().ends_with(".ron"))
-        .collect();
-    files.sort();
-    files
-        .iter()
-        .map(|f| {
-            let text = std::fs::read_to_string(f).expect("readable species file");
-            Species::from_ron(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()))
-        })
-        .collect()
 }
 
 /// Runs the jobs on every core, keeping their order.
@@ -389,7 +376,7 @@ fn main() {
         .iter()
         .position(|a| a == "--species")
         .and_then(|i| args.get(i + 1));
-    let species: Vec<Species> = shipped()
+    let species: Vec<Species> = shipped_species()
         .into_iter()
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
         .map(|s| with_overrides(s, &overrides))

@@ -6,31 +6,18 @@
 //!
 //! `cargo run --release --no-default-features --example stroke -- [--cycle 20] [--out docs] [--set field=value …]`
 
+#[path = "common/species.rs"]
+mod common;
+
 #[path = "sweep/plot.rs"]
 mod plot;
 
 use bevy_jellyfish::{SliceSim, Species};
+use common::shipped_species;
 use plot::{Chart, Series};
 use std::path::PathBuf;
 
 const PHASES: usize = 8;
-
-fn species_files() -> Vec<Species> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("assets/species")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.to_string_lossy().ends_with(".ron"))
-        .collect();
-    files.sort();
-    files
-        .iter()
-        .map(|f| {
-            let text = std::fs::read_to_string(f).expect("readable species file");
-            Species::from_ron(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()))
-        })
-        .collect()
-}
 
 /// Applies `field=value` overrides (RON values) through the species' RON text.
 fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
@@ -119,7 +106,7 @@ fn main() {
                 .map(|(k, v)| (k.to_string(), v.to_string()))
         })
         .collect();
-    let charts: Vec<Chart> = species_files()
+    let charts: Vec<Chart> = shipped_species()
         .into_iter()
         .map(|s| stroke(&with_overrides(s, &overrides), cycle))
         .collect();

@@ -7,23 +7,18 @@
 //! set `XDG_RUNTIME_DIR` to quiet it). The slices are hand-made ([`SliceOutline`]): the
 //! contracted row pulls opposite pairs towards the axis, to 56% of the rest span at the margin.
 
+#[path = "common/offscreen.rs"]
+mod screenshot;
+
 use bevy::{
-    app::SubApps,
     asset::RenderAssetUsages,
     camera::{RenderTarget, ScalingMode},
     mesh::{Indices, PrimitiveTopology},
     prelude::*,
-    render::{
-        RenderPlugin,
-        render_resource::{Extent3d, PollType, TextureDimension, TextureFormat, TextureUsages},
-        renderer::RenderDevice,
-        view::screenshot::{Screenshot, save_to_disk},
-    },
-    window::ExitCondition,
-    winit::WinitPlugin,
 };
 use bevy_jellyfish::Species;
 use bevy_jellyfish::shape::{JellyMesh, SliceOutline, SurfaceBuffers};
+use screenshot::{Offscreen, OffscreenTarget};
 use std::path::PathBuf;
 
 const WIDTH: u32 = 1500;
@@ -36,28 +31,23 @@ fn main() {
     let out = PathBuf::from(arg("--out").unwrap_or_else(|| "variations.png".into()));
     let elevation: f32 =
         arg("--elevation").map_or(22.0, |e| e.parse().expect("--elevation: degrees"));
-    let _ = std::fs::remove_file(&out);
-    let mut apps = headless_app();
-    let target = render_target(&mut apps);
-    spawn_scene(apps.main.world_mut(), target.clone(), elevation);
+    let mut offscreen = Offscreen::new(WIDTH, HEIGHT, |_| {}).unwrap_or_else(|e| {
+        eprintln!("{e}");
+        std::process::exit(1)
+    });
+    let target = offscreen.world().resource::<OffscreenTarget>().0.clone();
+    spawn_scene(offscreen.world_mut(), target, elevation);
     // Pipelines compile synchronously, so a few frames are enough before the capture.
     for _ in 0..3 {
-        update(&mut apps);
+        offscreen.update();
     }
-    let image = target.as_image().expect("image target").clone();
-    apps.main
-        .world_mut()
-        .spawn(Screenshot::image(image))
-        .observe(save_to_disk(out.clone()));
-    for _ in 0..30 {
-        update(&mut apps);
-        if out.exists() {
-            println!("wrote {}", out.display());
-            return;
+    match offscreen.capture(&out) {
+        Ok(()) => println!("wrote {}", out.display()),
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
         }
     }
-    eprintln!("no screenshot was written to {}", out.display());
-    std::process::exit(1);
 }
 
 /// The value after `--name` on the command line.
@@ -190,59 +180,4 @@ fn to_mesh(b: &SurfaceBuffers) -> Mesh {
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals.clone())
     .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, b.uvs.clone())
     .with_inserted_indices(Indices::U32(b.indices.clone()))
-}
-
-/// An app with no window and no runner: we pump it ourselves (Bevy's
-/// `externally_driven_headless_renderer` example).
-fn headless_app() -> SubApps {
-    let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .set(WindowPlugin {
-                primary_window: None,
-                exit_condition: ExitCondition::DontExit,
-                ..default()
-            })
-            .set(RenderPlugin {
-                synchronous_pipeline_compilation: true,
-                ..default()
-            })
-            .disable::<WinitPlugin>(),
-    );
-    app.finish();
-    app.cleanup();
-    std::mem::take(app.sub_apps_mut())
-}
-
-fn render_target(apps: &mut SubApps) -> RenderTarget {
-    let mut image = Image::new_uninit(
-        Extent3d {
-            width: WIDTH,
-            height: HEIGHT,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        TextureFormat::Rgba8UnormSrgb,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    image.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT;
-    apps.main
-        .world_mut()
-        .resource_mut::<Assets<Image>>()
-        .add(image)
-        .into()
-}
-
-/// One frame, then wait for the GPU (or llvmpipe) to finish it.
-fn update(apps: &mut SubApps) {
-    apps.update();
-    apps.main
-        .world()
-        .resource::<RenderDevice>()
-        .wgpu_device()
-        .poll(PollType::Wait {
-            submission_index: None,
-            timeout: None,
-        })
-        .expect("device poll");
 }

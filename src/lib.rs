@@ -8,6 +8,12 @@
 //! - [`shape`]: slice to 3D surface buffers (umbrella, tentacles, variation).
 //! - `plugin` (feature `bevy`): the ECS plugin.
 //! - `editor` (feature `editor`): the in-game species editor and stats panel (egui).
+//!
+//! What follows is the README's usage section (`docs/usage.md`, doc-tested here; a test
+//! checks that the README holds it word for word).
+#![cfg_attr(feature = "bevy", doc = "")]
+#![cfg_attr(feature = "bevy", doc = include_str!("../docs/usage.md"))]
+#![warn(missing_docs)]
 
 #[cfg(feature = "editor")]
 pub mod editor;
@@ -41,7 +47,18 @@ pub mod prelude {
     pub use crate::species::{Species, SpeciesError};
 }
 
-/// The README's code examples, compiled and run as doctests (they include a Bevy app).
-#[cfg(all(doctest, feature = "bevy"))]
-#[doc = include_str!("../README.md")]
-pub struct ReadmeDoctests;
+#[cfg(test)]
+mod tests {
+    /// The crate's front page is the README's usage section: `docs/usage.md`, included
+    /// above and doc-tested, must stand in the README word for word.
+    #[test]
+    fn the_readme_holds_the_crate_docs() {
+        let readme = include_str!("../README.md");
+        let usage = include_str!("../docs/usage.md");
+        assert!(usage.contains("## In a Bevy app") && usage.contains("## Use it headless"));
+        assert!(
+            readme.contains(usage),
+            "README.md no longer holds docs/usage.md: edit both together"
+        );
+    }
+}

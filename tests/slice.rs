@@ -3,6 +3,8 @@
 //! `#[ignore]`d: `cargo test --release --no-default-features --test slice -- --ignored
 //! --nocapture` prints every figure they check.
 
+mod common;
+
 use bevy_jellyfish::sim::body::{Outline, contains};
 use bevy_jellyfish::{SliceSim, Species};
 use glam::Vec2;
@@ -366,16 +368,7 @@ fn spread(v: &[f32]) -> f32 {
 }
 
 fn shipped() -> Vec<Species> {
-    ["aequorea", "aurelia", "sarsia"]
-        .iter()
-        .map(|name| {
-            let path = format!(
-                "{}/assets/species/{name}.species.ron",
-                env!("CARGO_MANIFEST_DIR")
-            );
-            Species::from_ron(&std::fs::read_to_string(path).unwrap()).unwrap()
-        })
-        .collect()
+    common::shipped_species()
 }
 
 #[test]

@@ -1,17 +1,14 @@
 //! The camera: HDR with bloom, tonemapping and underwater fog; it orbits a point (left
 //! drag), pans it (right drag) and zooms (scroll), unless the pointer is on a panel.
 
+use crate::screenshot::OffscreenTarget;
 use crate::tank::{SURFACE, WATER};
-use bevy::camera::{Hdr, RenderTarget};
+use bevy::camera::Hdr;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::pbr::{DistanceFog, FogFalloff};
 use bevy::post_process::bloom::Bloom;
 use bevy::prelude::*;
-
-/// Render into this image instead of the window (offscreen pictures).
-#[derive(Resource, Clone)]
-pub struct OffscreenTarget(pub RenderTarget);
 
 #[derive(Component, Debug)]
 pub struct Orbit {

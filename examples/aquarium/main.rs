@@ -20,6 +20,7 @@ mod bench;
 mod camera;
 mod scene;
 mod school;
+#[path = "../common/offscreen.rs"]
 mod screenshot;
 mod snow;
 mod stats;

@@ -49,8 +49,10 @@ impl Default for JellyfishEditorPlugin {
 }
 
 /// Where species are saved; set from [`JellyfishEditorPlugin::assets_dir`].
-#[derive(Resource, Clone, Debug)]
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(Resource)]
 pub struct EditorConfig {
+    /// The asset folder; species are saved as `species/<name>.species.ron` under it.
     pub assets_dir: PathBuf,
 }
 
@@ -66,6 +68,8 @@ impl Plugin for JellyfishEditorPlugin {
             assets_dir: self.assets_dir.clone(),
         })
         .init_resource::<SpeciesEditor>()
+        .register_type::<EditorConfig>()
+        .register_type::<SpeciesEditor>()
         .add_systems(Update, remember_presets)
         .add_systems(EguiPrimaryContextPass, panels::species_window);
         if self.stats {

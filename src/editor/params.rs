@@ -9,7 +9,9 @@ use std::ops::RangeInclusive;
 
 /// A numeric field of [`Species`], borrowed for editing.
 pub enum Value<'a> {
+    /// A real-valued field.
     Real(&'a mut f32),
+    /// A count.
     Count(&'a mut u32),
 }
 
@@ -17,17 +19,23 @@ pub enum Value<'a> {
 pub struct Param {
     /// The [`Species`] field, as named in RON files and validation errors.
     pub field: &'static str,
+    /// What the slider is called in the panel.
     pub label: &'static str,
+    /// The unit shown beside the value.
     pub unit: &'static str,
     /// Shown value = stored value × `scale` (lengths in millimetres).
     pub scale: f64,
+    /// Whether the slider moves in ratios rather than steps (for values spanning decades).
     pub logarithmic: bool,
+    /// Reaches the field in a species.
     pub value: for<'a> fn(&'a mut Species) -> Value<'a>,
 }
 
 /// A collapsible group of sliders.
 pub struct Section {
+    /// The section heading.
     pub title: &'static str,
+    /// Its sliders, in order.
     pub params: &'static [Param],
 }
 

@@ -9,12 +9,14 @@ use std::path::Path;
 
 /// The species editor's state: which species is open, its draft, and each species as
 /// first loaded (its preset).
-#[derive(Resource, Default)]
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct SpeciesEditor {
     /// Whether the editor window is shown.
     pub open: bool,
     selected: Option<AssetId<Species>>,
     draft: Species,
+    #[reflect(ignore)]
     error: Option<SpeciesError>,
     /// The outcome of the last save or reset, for the panel.
     status: Option<String>,
@@ -22,6 +24,7 @@ pub struct SpeciesEditor {
 }
 
 impl SpeciesEditor {
+    /// The species open for editing, if any.
     pub fn selected(&self) -> Option<AssetId<Species>> {
         self.selected
     }
@@ -36,6 +39,7 @@ impl SpeciesEditor {
         }
     }
 
+    /// The edited copy of the open species, applied when it validates.
     pub fn draft(&self) -> &Species {
         &self.draft
     }
@@ -50,6 +54,7 @@ impl SpeciesEditor {
         self.error.as_ref()
     }
 
+    /// What the last save or reset did, for the panel.
     pub fn status(&self) -> Option<&str> {
         self.status.as_deref()
     }
@@ -120,13 +125,18 @@ impl SpeciesEditor {
 /// Why a species was not saved.
 #[derive(Debug, thiserror::Error)]
 pub enum SaveError {
+    /// The draft does not validate.
     #[error("{0}")]
     Invalid(SpeciesError),
+    /// The species could not be written as RON.
     #[error("{0}")]
     Species(#[from] SpeciesError),
+    /// The file could not be written.
     #[error("cannot write {path}: {source}")]
     Io {
+        /// The file.
         path: String,
+        /// Why.
         source: std::io::Error,
     },
 }

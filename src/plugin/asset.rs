@@ -6,6 +6,7 @@ use bevy::asset::{
     Asset, AssetLoadError, AssetLoadFailedEvent, AssetLoader, LoadContext, UntypedAssetId,
     VisitAssetDependencies, io::Reader,
 };
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
 // `TypePath` comes from the `Reflect` derive on `Species`.
@@ -47,10 +48,53 @@ impl AssetLoader for SpeciesLoader {
 
 /// A species that living jellyfish did not take: a file that failed to load or reload, or
 /// an edit of the asset that does not validate. They keep their last valid parameters.
+///
+/// Sent once per refusal: not again for the same error until the species changes, however
+/// many jellyfish refuse it or how many times the watcher reloads the same bad file.
 #[derive(Message, Clone, Debug)]
 pub struct SpeciesRejected {
+    /// The species refused.
     pub species: AssetId<Species>,
+    /// Why, naming the field.
     pub error: SpeciesError,
+}
+
+/// The last refusal said of each species, so that each is said (logged and sent) once.
+#[derive(Resource, Default)]
+pub(crate) struct Refusals(HashMap<AssetId<Species>, SpeciesError>);
+
+impl Refusals {
+    /// Says `error` of `species` unless it is what was last said of it; true if said.
+    pub(crate) fn say(
+        &mut self,
+        species: AssetId<Species>,
+        error: &SpeciesError,
+        rejected: &mut MessageWriter<SpeciesRejected>,
+    ) -> bool {
+        if self.0.get(&species) == Some(error) {
+            return false;
+        }
+        self.0.insert(species, error.clone());
+        rejected.write(SpeciesRejected {
+            species,
+            error: error.clone(),
+        });
+        true
+    }
+}
+
+/// A species that changed (an edit, a good reload, a removal) may be refused anew.
+pub(super) fn forget_changed(
+    mut events: MessageReader<AssetEvent<Species>>,
+    mut refusals: ResMut<Refusals>,
+) {
+    for event in events.read() {
+        if let AssetEvent::Added { id } | AssetEvent::Modified { id } | AssetEvent::Removed { id } =
+            event
+        {
+            refusals.0.remove(id);
+        }
+    }
 }
 
 pub(super) fn plugin(app: &mut App) {
@@ -58,15 +102,19 @@ pub(super) fn plugin(app: &mut App) {
         .register_asset_reflect::<Species>()
         .init_asset_loader::<SpeciesLoader>()
         .add_message::<SpeciesRejected>()
+        .init_resource::<Refusals>()
         .add_systems(
             PreUpdate,
-            report_failed_loads.in_set(super::JellyfishSystems::Prepare),
+            (forget_changed, report_failed_loads)
+                .chain()
+                .in_set(super::JellyfishSystems::Prepare),
         );
 }
 
 /// Bevy logs the loader's error; this says what happens next and tells listeners.
 fn report_failed_loads(
     mut failed: MessageReader<AssetLoadFailedEvent<Species>>,
+    mut refusals: ResMut<Refusals>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
     for event in failed.read() {
@@ -76,13 +124,11 @@ fn report_failed_loads(
         let Some(error) = loader.error().downcast_ref::<SpeciesError>() else {
             continue;
         };
-        warn!(
-            "species '{}' refused ({error}); jellyfish keep its last valid parameters",
-            event.path
-        );
-        rejected.write(SpeciesRejected {
-            species: event.id,
-            error: error.clone(),
-        });
+        if refusals.say(event.id, error, &mut rejected) {
+            warn!(
+                "species '{}' refused ({error}); jellyfish keep its last valid parameters",
+                event.path
+            );
+        }
     }
 }

@@ -20,6 +20,7 @@ use bevy::prelude::*;
 #[reflect(Component)]
 #[require(Transform, Visibility, JellyfishSlice, SwimMotion, JellyfishMeshes)]
 pub struct Jellyfish {
+    /// Its species: a loaded file or a `Species` added to `Assets<Species>`.
     pub species: Handle<Species>,
     /// Picks the individual's surface noise; `None` derives one from the entity.
     pub seed: Option<u32>,
@@ -29,6 +30,7 @@ pub struct Jellyfish {
 }
 
 impl Jellyfish {
+    /// A jellyfish of `species`, its seed and phase derived from the entity.
     pub fn new(species: Handle<Species>) -> Self {
         Self {
             species,
@@ -37,11 +39,13 @@ impl Jellyfish {
         }
     }
 
+    /// Picks its surface noise (two with one seed look alike).
     pub fn with_seed(mut self, seed: u32) -> Self {
         self.seed = Some(seed);
         self
     }
 
+    /// Starts it at `phase` of its stroke, in cycles [0, 1).
     pub fn with_phase(mut self, phase: f32) -> Self {
         self.phase = Some(phase);
         self
@@ -60,6 +64,15 @@ impl Jellyfish {
     }
 }
 
+/// Lets systems filter on `AssetChanged<Jellyfish>`: its species asset changed.
+impl bevy::asset::AsAssetId for Jellyfish {
+    type Asset = Species;
+
+    fn as_asset_id(&self) -> AssetId<Species> {
+        self.species.id()
+    }
+}
+
 /// A small integer hash (lowbias32), so neighbouring entities get unrelated seeds.
 fn hash(mut x: u32) -> u32 {
     x ^= x >> 16;
@@ -73,22 +86,27 @@ fn hash(mut x: u32) -> u32 {
 /// its last few fixed steps, which frames blend between.
 ///
 /// Empty until the species asset has loaded.
-#[derive(Component, Default)]
+#[derive(Component, Default, Reflect)]
+#[reflect(Component, Default)]
 pub struct JellyfishSlice {
     /// The live slice (near and mid tiers).
+    #[reflect(ignore)]
     pub(crate) sim: Option<SliceSim>,
     /// The replayed cycle (far tier).
+    #[reflect(ignore)]
     pub(crate) replay: Option<Replay>,
     pub(crate) tier: Tier,
     /// The species as simulated: the last valid one it was given.
     pub(crate) species: Species,
     pub(crate) seed: u32,
+    #[reflect(ignore)]
     pub(crate) history: SliceHistory,
     /// The bell at rest, which meshes measure contraction against.
     pub(crate) rest_bell: Vec<Vec2>,
     /// Virtual time and the clock's added time at one moment: the clock is set from the
     /// virtual time elapsed since (an exact count of nanoseconds), so frames that split
     /// the same time differently end at the same state. Reset when the clock is replaced.
+    #[reflect(ignore)]
     pub(crate) anchor: Option<(std::time::Duration, f64)>,
 }
 
@@ -97,6 +115,13 @@ impl JellyfishSlice {
     /// overlays and tools); `None` while it replays its species' cycle (far).
     pub fn sim(&self) -> Option<&SliceSim> {
         self.sim.as_ref()
+    }
+
+    /// The live slice, mutable: for testing recovery (`SliceSim::poison_for_tests`).
+    /// Anything changed here is physics, outside the species' calibration.
+    #[doc(hidden)]
+    pub fn sim_mut_for_tests(&mut self) -> Option<&mut SliceSim> {
+        self.sim.as_mut()
     }
 
     /// Whether it swims yet: its species has loaded and it has a slice or a replay.
@@ -128,6 +153,7 @@ impl JellyfishSlice {
         self.clock().map(FixedClock::phase)
     }
 
+    /// The seed its surface noise was drawn with.
     pub fn seed(&self) -> u32 {
         self.seed
     }
@@ -285,7 +311,9 @@ impl SliceHistory {
 /// Where a jellyfish is and which way it points, world.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct Pose {
+    /// World position.
     pub position: Vec3,
+    /// World rotation: local +Y is the swimming axis.
     pub rotation: Quat,
 }
 
@@ -299,6 +327,7 @@ impl Default for Pose {
 }
 
 impl Pose {
+    /// The pose a transform holds.
     pub fn of(transform: &Transform) -> Self {
         Self {
             position: transform.translation,
@@ -450,21 +479,29 @@ pub struct Resting;
 /// rebuilt every frame (despawning frees them); with templates (see
 /// [`SurfaceMode`](super::SurfaceMode)) they are shared by every jellyfish of the same
 /// resolution and the vertex shader shapes them from the jellyfish's packed shape.
-#[derive(Component, Default)]
+#[derive(Component, Default, Reflect)]
+#[reflect(Component, Default)]
 pub struct JellyfishMeshes {
+    /// The umbrella's mesh, once set up.
     pub umbrella: Option<Handle<Mesh>>,
+    /// The tentacles' mesh, once set up.
     pub tentacles: Option<Handle<Mesh>>,
+    /// The child entity drawing the tentacles.
     pub tentacle_entity: Option<Entity>,
     /// How it is drawn, once set up.
     pub(crate) path: Option<SurfacePath>,
     /// CPU meshes: the buffers the assets are rebuilt from.
+    #[reflect(ignore)]
     pub(crate) buffers: JellyMesh,
     /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
     pub(crate) block: Vec<f32>,
+    #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     pub(crate) slot: Option<u32>,
+    #[reflect(ignore)]
     pub(crate) blended: Snapshot,
     /// The topology the mesh assets were written with.
+    #[reflect(ignore)]
     pub(crate) written: Option<Resolution>,
     /// Buffers hold a frame not yet copied to the assets.
     pub(crate) dirty: bool,

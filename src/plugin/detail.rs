@@ -27,7 +27,8 @@ use std::sync::Arc;
 pub(super) fn plugin(app: &mut App) {
     app.init_resource::<CycleCaches>()
         .register_type::<Tier>()
-        .register_type::<DetailLevels>();
+        .register_type::<DetailLevels>()
+        .register_type::<CycleCaches>();
 }
 
 /// How much of a jellyfish is simulated.
@@ -143,9 +144,12 @@ impl Replay {
 /// is done when first needed, in that frame, so which jellyfish are far is the same in
 /// every run; after an edit it is recorded in the background while far jellyfish play the
 /// old cycle, so dragging an editor slider does not stall the app.
-#[derive(Resource, Default)]
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct CycleCaches {
+    #[reflect(ignore)]
     caches: Vec<Arc<CycleCache>>,
+    #[reflect(ignore)]
     recording: Vec<(Species, Task<Option<CycleCache>>)>,
 }
 

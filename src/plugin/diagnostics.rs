@@ -20,7 +20,9 @@ impl JellyfishDiagnostics {
     pub const COUNT: DiagnosticPath = DiagnosticPath::const_new("jellyfish/count");
     /// Jellyfish at each [`Tier`](super::Tier).
     pub const NEAR: DiagnosticPath = DiagnosticPath::const_new("jellyfish/near");
+    /// Jellyfish in the mid tier.
     pub const MID: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mid");
+    /// Jellyfish in the far tier.
     pub const FAR: DiagnosticPath = DiagnosticPath::const_new("jellyfish/far");
     /// Jellyfish that changed tier this frame.
     pub const TIER_CHANGES: DiagnosticPath = DiagnosticPath::const_new("jellyfish/tier_changes");
@@ -42,25 +44,30 @@ pub(crate) struct JellyfishTimings {
 }
 
 impl JellyfishTimings {
+    /// Adds time spent stepping slices this frame.
     pub fn add_simulation(&self, d: Duration) {
         self.simulation_ns
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
 
+    /// Adds time spent meshing this frame.
     pub fn add_meshing(&self, d: Duration) {
         self.meshing_ns
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
 
+    /// Adds time spent on the tank's water this frame.
     pub fn add_water(&self, d: Duration) {
         self.water_ns
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
     }
 
+    /// Counts jellyfish that changed tier this frame.
     pub fn add_tier_changes(&self, count: usize) {
         self.tier_changes.fetch_add(count as u64, Ordering::Relaxed);
     }
 
+    /// Counts mesh bytes written this frame.
     pub fn add_mesh_bytes(&self, bytes: usize) {
         self.mesh_bytes.fetch_add(bytes as u64, Ordering::Relaxed);
     }

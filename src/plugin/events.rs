@@ -9,22 +9,25 @@ use bevy::prelude::*;
 use bevy::utils::Parallel;
 
 /// A jellyfish's slice has started: its species loaded and validated.
-#[derive(EntityEvent, Clone, Copy, Debug, PartialEq)]
+#[derive(EntityEvent, Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct JellyfishStarted {
+    /// The jellyfish.
     pub entity: Entity,
 }
 
 /// A stroke began: the bell starts to contract (the phase came round to zero).
-#[derive(EntityEvent, Clone, Copy, Debug, PartialEq)]
+#[derive(EntityEvent, Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct StrokeStarted {
+    /// The jellyfish.
     pub entity: Entity,
     /// Strokes completed before this one.
     pub cycle: u64,
 }
 
 /// A blown-up slice was detected and restarted at rest (see `SliceSim::recoveries`).
-#[derive(EntityEvent, Clone, Copy, Debug, PartialEq)]
+#[derive(EntityEvent, Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct SliceRecovered {
+    /// The jellyfish.
     pub entity: Entity,
     /// Recoveries of this slice so far.
     pub recoveries: u32,

@@ -45,6 +45,7 @@ pub struct JellyfishGeometry<'w, 's> {
 /// [`JellyMesh`]: positions, unit normals, UVs and triangles).
 #[derive(Clone, Debug, Default)]
 pub struct WorldSurfaces {
+    /// The umbrella, world space.
     pub umbrella: SurfaceBuffers,
     /// Empty for a species without tentacles.
     pub tentacles: SurfaceBuffers,

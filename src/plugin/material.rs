@@ -14,14 +14,19 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
 /// The materials made for each species.
-#[derive(Resource, Default)]
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct JellyfishMaterials {
+    /// Per species, its two materials.
     pub by_species: HashMap<AssetId<Species>, SpeciesMaterials>,
 }
 
-#[derive(Clone, Debug)]
+/// The materials of one species' jellyfish (CPU meshes).
+#[derive(Clone, Debug, Reflect)]
 pub struct SpeciesMaterials {
+    /// The umbrella's.
     pub bell: Handle<StandardMaterial>,
+    /// The tentacles'.
     pub tentacles: Handle<StandardMaterial>,
 }
 
@@ -35,13 +40,15 @@ impl JellyfishMaterials {
 }
 
 pub(super) fn plugin(app: &mut App) {
-    app.init_resource::<JellyfishMaterials>().add_systems(
-        PostUpdate,
-        (update_materials, assign_materials)
-            .chain()
-            .after(JellyfishSystems::RebuildMeshes)
-            .run_if(resource_exists::<Assets<StandardMaterial>>),
-    );
+    app.init_resource::<JellyfishMaterials>()
+        .register_type::<JellyfishMaterials>()
+        .add_systems(
+            PostUpdate,
+            (update_materials, assign_materials)
+                .chain()
+                .after(JellyfishSystems::RebuildMeshes)
+                .run_if(resource_exists::<Assets<StandardMaterial>>),
+        );
 }
 
 /// The bell: alpha-blended and double-sided (the subumbrella shows through), a high

@@ -67,6 +67,7 @@ use bevy::transform::TransformSystems;
 /// app already has is kept.
 #[derive(Clone, Debug, Default)]
 pub struct JellyfishPlugin {
+    /// The settings inserted unless the app already has a `JellyfishSettings`.
     pub settings: JellyfishSettings,
 }
 
@@ -94,6 +95,17 @@ impl Plugin for JellyfishPlugin {
             .register_type::<Jellyfish>()
             .register_type::<Steering>()
             .register_type::<Resting>()
+            .register_type::<JellyfishSlice>()
+            .register_type::<JellyfishTentacles>()
+            .register_type::<SwimMotion>()
+            .register_type::<AmbientWater>()
+            .register_type::<TankWater>()
+            .register_type::<ShapeBuffers>()
+            .register_type::<SurfacePath>()
+            .register_type::<JellyfishMeshes>()
+            .register_type::<JellyfishStarted>()
+            .register_type::<StrokeStarted>()
+            .register_type::<SliceRecovered>()
             .add_plugins((
                 asset::plugin,
                 diagnostics::plugin,

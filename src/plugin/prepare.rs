@@ -1,7 +1,7 @@
 //! Slices for new jellyfish, and species edits reaching living ones.
 
 use super::JellyfishSystems;
-use super::asset::SpeciesRejected;
+use super::asset::{Refusals, SpeciesRejected};
 use super::components::{Jellyfish, JellyfishSlice, Pose, SwimMotion};
 use super::detail::{CycleCaches, switch_cycle, tier_species};
 use super::events::{Lifecycle, LifecycleQueue};
@@ -16,7 +16,8 @@ pub(super) fn plugin(app: &mut App) {
         PreUpdate,
         (apply_edits, create_slices, super::detail::change_tiers)
             .chain()
-            .in_set(JellyfishSystems::Prepare),
+            .in_set(JellyfishSystems::Prepare)
+            .after(super::asset::forget_changed),
     );
 }
 
@@ -40,6 +41,7 @@ fn create_slices(
     species: Res<Assets<Species>>,
     mut edits: MessageReader<AssetEvent<Species>>,
     mut refused: Local<Refused>,
+    mut refusals: ResMut<Refusals>,
     mut rejected: MessageWriter<SpeciesRejected>,
     events: Res<LifecycleQueue>,
 ) {
@@ -83,12 +85,10 @@ fn create_slices(
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
             }
         });
-    let mut reported = HashSet::new();
     for (entity, id, error) in queue.drain() {
         failed.insert(entity);
-        if reported.insert(id) {
+        if refusals.say(id, &error, &mut rejected) {
             error!("jellyfish species {id} refused: {error}");
-            rejected.write(SpeciesRejected { species: id, error });
         }
     }
     failed.retain(|e| jellyfish.contains(*e));
@@ -101,30 +101,22 @@ struct Refused {
     failed: HashSet<Entity>,
 }
 
+/// A jellyfish given another species handle, or whose species asset changed.
+type SpeciesChanged = Or<(Changed<Jellyfish>, AssetChanged<Jellyfish>)>;
+
 /// Applies edited species assets and a jellyfish's new species handle to living slices
 /// through [`SliceSim::set_species`], which refuses an invalid species before changing
-/// anything. A far jellyfish takes the new species' recorded cycle.
+/// anything. A far jellyfish takes the new species' recorded cycle. Only jellyfish whose
+/// species asset or handle changed are visited (`AssetChanged`), not every one each frame.
 fn apply_edits(
-    mut events: MessageReader<AssetEvent<Species>>,
-    mut jellyfish: Query<(Ref<Jellyfish>, &mut JellyfishSlice, &mut SwimMotion)>,
+    mut jellyfish: Query<(&Jellyfish, &mut JellyfishSlice, &mut SwimMotion), SpeciesChanged>,
     species: Res<Assets<Species>>,
     mut caches: ResMut<CycleCaches>,
+    mut refusals: ResMut<Refusals>,
     mut rejected: MessageWriter<SpeciesRejected>,
 ) {
-    let edited: HashSet<AssetId<Species>> = events
-        .read()
-        .filter_map(|e| match e {
-            AssetEvent::Modified { id } => Some(*id),
-            _ => None,
-        })
-        .collect();
-    let mut reported = HashSet::new();
     for (jelly, mut slice, mut motion) in &mut jellyfish {
         let id = jelly.species.id();
-        let swapped = jelly.is_changed() && !jelly.is_added();
-        if !edited.contains(&id) && !swapped {
-            continue;
-        }
         let Some(simulated) = species.get(id) else {
             continue;
         };
@@ -135,11 +127,10 @@ fn apply_edits(
         match apply(slice, &mut motion, simulated, &mut caches) {
             Ok(()) => slice.species = simulated.clone(),
             Err(error) => {
-                if reported.insert(id) {
+                if refusals.say(id, &error, &mut rejected) {
                     error!(
                         "jellyfish species {id} edit refused, keeping the last valid parameters: {error}"
                     );
-                    rejected.write(SpeciesRejected { species: id, error });
                 }
             }
         }

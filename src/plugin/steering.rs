@@ -18,6 +18,7 @@ use bevy::prelude::*;
 #[derive(Component, Clone, Copy, Debug, PartialEq, Reflect)]
 #[reflect(Component)]
 pub struct Steering {
+    /// Where it heads.
     pub target: SteeringTarget,
     /// Radians turned per bell diameter the bell surges forward during contraction.
     pub agility: f32,
@@ -38,6 +39,7 @@ impl Steering {
     /// from rest: a right angle in about five strokes from rest.
     pub const DEFAULT_AGILITY: f32 = 3.0;
 
+    /// Head in a world direction.
     pub fn heading(direction: Vec3) -> Self {
         Self {
             target: SteeringTarget::Heading(direction),
@@ -45,6 +47,7 @@ impl Steering {
         }
     }
 
+    /// Head for a world point.
     pub fn towards(point: Vec3) -> Self {
         Self {
             target: SteeringTarget::Point(point),
@@ -52,6 +55,7 @@ impl Steering {
         }
     }
 
+    /// How strongly it turns per stroke (see `agility`).
     pub fn with_agility(mut self, agility: f32) -> Self {
         self.agility = agility;
         self

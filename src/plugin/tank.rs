@@ -15,7 +15,8 @@ use bevy::prelude::*;
 const PRESSURE_SWEEPS: usize = 20;
 
 /// The tank's water, as a game adds it: `app.insert_resource(TankWater::new(min, max, cell))`.
-#[derive(Resource, Clone, Debug)]
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(Resource)]
 pub struct TankWater {
     /// The tank's lower corner, world.
     pub min: Vec3,
@@ -37,10 +38,13 @@ pub struct TankWater {
 
 /// A push given to the water: within `radius` of `at`, towards `velocity` (world units
 /// per second), smoothly less towards the edge.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct Impulse {
+    /// Centre, world.
     pub at: Vec3,
+    /// Reach, world units.
     pub radius: f32,
+    /// Velocity given at the centre, world units per second.
     pub velocity: Vec3,
 }
 

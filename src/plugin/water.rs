@@ -37,7 +37,8 @@ pub trait WaterField: Send + Sync + 'static {
 /// // Or any function of place and time: a gentle swirl about the y axis.
 /// app.insert_resource(AmbientWater::from_fn(|p, _t| Vec3::new(-p.z, 0.0, p.x) * 0.1));
 /// ```
-#[derive(Resource, Clone)]
+#[derive(Resource, Clone, Reflect)]
+#[reflect(opaque, Resource, Default)]
 pub struct AmbientWater(pub Arc<dyn WaterField>);
 
 impl Default for AmbientWater {
@@ -67,6 +68,7 @@ impl AmbientWater {
         Self(Arc::new(field))
     }
 
+    /// The water's velocity at `point` (world) at `time` (seconds of virtual time).
     pub fn velocity(&self, point: Vec3, time: f64) -> Vec3 {
         self.0.velocity(point, time)
     }
@@ -94,7 +96,7 @@ impl<F: Fn(Vec3, f64) -> Vec3 + Send + Sync + 'static> WaterField for FromFn<F> 
 
 /// Velocities sampled on a regular grid (cell centres), trilinear between them and held
 /// at the edges: for currents baked by a tool or a simulation of the game's own.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Reflect)]
 pub struct SampledWater {
     /// World position of the first sample.
     pub origin: Vec3,

@@ -4,17 +4,23 @@
 /// counter-clockwise (outward) winding.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SurfaceBuffers {
+    /// Vertex positions, metres in the jellyfish's frame.
     pub positions: Vec<[f32; 3]>,
+    /// Unit vertex normals.
     pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates: u around the axis, v from apex (or root) to margin (or tip).
     pub uvs: Vec<[f32; 2]>,
+    /// Triangles, three indices each.
     pub indices: Vec<u32>,
 }
 
 impl SurfaceBuffers {
+    /// Vertices in the buffers.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
 
+    /// Triangles in the buffers.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
     }

@@ -11,7 +11,9 @@ use glam::{Vec2, Vec3};
 /// The circle swept by one opposite pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Disc {
+    /// The disc's centre on the axis, metres.
     pub centre: Vec3,
+    /// Its radius, metres.
     pub radius: f32,
     /// Unit direction from the centre to the right point, in the slice plane.
     pub radial: Vec2,

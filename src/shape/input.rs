@@ -17,7 +17,12 @@ pub enum ShapeError {
     EvenPointCount(usize),
     /// `rest_bell` must pair up with `bell` point by point.
     #[error("the rest bell has {rest} points but the bell has {bell}")]
-    RestMismatch { bell: usize, rest: usize },
+    RestMismatch {
+        /// Points of the bell.
+        bell: usize,
+        /// Points of the rest bell.
+        rest: usize,
+    },
     /// A point is NaN or infinite (a diverged simulation).
     #[error("{0} holds a non-finite point")]
     NonFinitePoint(&'static str),

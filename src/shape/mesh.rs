@@ -20,10 +20,12 @@ pub struct Resolution {
     pub rings: usize,
     /// Segments around the axis.
     pub segments: usize,
+    /// How many tentacles and how finely each is drawn.
     pub tentacles: TentacleLayout,
 }
 
 impl Resolution {
+    /// The resolution a species asks for.
     pub fn of(species: &Species) -> Self {
         Self::scaled(species, 1.0)
     }
@@ -58,10 +60,12 @@ impl Resolution {
         }
     }
 
+    /// Vertices of the umbrella at this resolution.
     pub fn umbrella_vertices(&self) -> usize {
         umbrella::vertex_count(self.rings, self.segments)
     }
 
+    /// Vertices of all tentacles at this resolution.
     pub fn tentacle_vertices(&self) -> usize {
         self.tentacles.vertex_count()
     }
@@ -74,7 +78,9 @@ impl Resolution {
 /// With no tentacles the tentacle buffers are empty: don't hand them to Bevy then.
 #[derive(Clone, Debug, Default)]
 pub struct JellyMesh {
+    /// The bell: exumbrella, subumbrella and the margin between them.
     pub umbrella: SurfaceBuffers,
+    /// Every tentacle, as tubes.
     pub tentacles: SurfaceBuffers,
     resolution: Option<Resolution>,
     scratch: Scratch,

@@ -30,8 +30,11 @@ pub struct NoiseField {
 /// What the cached knots depend on besides time: the individual and the spatial frequencies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NoiseKey {
+    /// The individual's seed.
     pub seed: u32,
+    /// The latitudinal frequency, as bits so that the key compares exactly.
     pub lat_frequency_bits: u32,
+    /// The longitudinal frequency's bits.
     pub lon_frequency_bits: u32,
 }
 

@@ -10,8 +10,11 @@ use std::f32::consts::PI;
 /// An owned slice in the layout of [`SliceView`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SliceOutline {
+    /// The bell's points now, metres, apex on the axis.
     pub bell: Vec<Vec2>,
+    /// The same points at rest, which contraction is measured against.
     pub rest_bell: Vec<Vec2>,
+    /// The two tentacle chains of the slice, margin first.
     pub tentacles: [Vec<Vec2>; 2],
 }
 

@@ -27,23 +27,37 @@ use crate::species::Species;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
+/// Header offsets of the packed block: the individual's seed (as `f32` bits).
 pub const H_SEED: usize = 0;
+/// Rings (opposite pairs) from apex to margin.
 pub const H_RINGS: usize = 1;
+/// Segments around the axis.
 pub const H_SEGMENTS: usize = 2;
+/// Tentacles around the margin.
 pub const H_TENTACLES: usize = 3;
+/// Sides of each tentacle's tube.
 pub const H_SIDES: usize = 4;
+/// Points along each tentacle chain.
 pub const H_POINTS: usize = 5;
+/// Structural variation's amplitude, m.
 pub const H_STRUCTURAL: usize = 6;
+/// Structural lobes around the bell.
 pub const H_STRUCTURAL_FREQUENCY: usize = 7;
 /// 1 for `|sin|` lobes, 0 for `sin`.
 pub const H_STRUCTURAL_ABS: usize = 8;
+/// Compression ripples' amplitude, m.
 pub const H_COMPRESSION: usize = 9;
+/// Compression ripples around the bell.
 pub const H_COMPRESSION_FREQUENCY: usize = 10;
+/// Unstructured (noise) amplitude, m.
 pub const H_UNSTRUCTURED: usize = 11;
+/// The noise's frequency along the latitude.
 pub const H_LAT_FREQUENCY: usize = 12;
+/// The radius of the noise's circle around the bell.
 pub const H_LON_RADIUS: usize = 13;
 /// The noise's time coordinate `f_t·t`.
 pub const H_TAU: usize = 14;
+/// Tentacle tube radius, m.
 pub const H_TENTACLE_RADIUS: usize = 15;
 /// The aperture's disc ([`DISC`] values).
 pub const H_APERTURE: usize = 16;

@@ -14,7 +14,9 @@ use glam::Vec2;
 /// One opposite pair of the resampled slice; index 0 is the left side, 1 the right.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RingPair {
+    /// The inner (subumbrellar) surface's point on each side, metres.
     pub subumbrella: [Vec2; 2],
+    /// The outer (exumbrellar) surface's point on each side, metres.
     pub exumbrella: [Vec2; 2],
     /// Unit normals of the mesoglea, pointing away from the bell cavity.
     pub normal: [Vec2; 2],

@@ -18,7 +18,9 @@ use std::f32::consts::TAU;
 /// Tube and count of the tentacle surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct TentacleLayout {
+    /// Tentacles around the margin.
     pub count: usize,
+    /// Sides of each tentacle's tube.
     pub sides: usize,
     /// Rings along each tentacle, root to tip (at least 2).
     pub points: usize,
@@ -29,6 +31,7 @@ impl TentacleLayout {
         2 + self.points * (self.sides + 1)
     }
 
+    /// Vertices of all tentacles with chains of `points` points.
     pub fn vertex_count(&self) -> usize {
         self.count * self.per_tentacle()
     }

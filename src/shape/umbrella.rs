@@ -90,7 +90,9 @@ pub fn noise_samples(
 /// lobe and the compression ripple at full strength.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Column {
+    /// The structural lobe's offset along the mesoglea normal in this column, metres.
     pub lobe: f32,
+    /// The compression ripple's offset in this column at full contraction, metres.
     pub ripple: f32,
 }
 

@@ -5,6 +5,7 @@
 //! every coupling lands within a few rows of the diagonal, so an exact banded solve costs
 //! O(n·b²) and never stalls the way conjugate gradients does on stiff hinges.
 
+/// A symmetric positive-definite banded matrix, factored in place by Cholesky.
 #[derive(Clone)]
 pub struct BandedSpd {
     n: usize,
@@ -15,6 +16,7 @@ pub struct BandedSpd {
 }
 
 impl BandedSpd {
+    /// An `n`×`n` zero matrix with `band` diagonals above the main one.
     pub fn new(n: usize, band: usize) -> Self {
         Self {
             n,
@@ -23,6 +25,7 @@ impl BandedSpd {
         }
     }
 
+    /// Sets the matrix to `diagonal` times the identity.
     pub fn clear_to_diagonal(&mut self, diagonal: f64) {
         self.lower.iter_mut().for_each(|x| *x = 0.0);
         for row in 0..self.n {

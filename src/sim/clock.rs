@@ -44,6 +44,7 @@ impl FixedClock {
         self.step
     }
 
+    /// Fixed steps per stroke cycle.
     pub fn steps_per_cycle(&self) -> u32 {
         self.steps_per_cycle
     }

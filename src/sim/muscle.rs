@@ -11,8 +11,12 @@ use crate::species::Species;
 /// The contraction functions of one species.
 #[derive(Clone, Copy, Debug)]
 pub struct MuscleDrive {
+    /// Fully contracted length over rest length.
     pub ratio: f32,
+    /// Fraction of the cycle spent contracting.
     pub duty: f32,
+    /// How much later and more slowly the springs nearer the aperture re-expand (0: in
+    /// unison), `Species::expansion_stagger`.
     pub stagger: f32,
 }
 
@@ -22,6 +26,7 @@ const STAGGER_DELAY: f32 = 0.2;
 const UNISON_EXPANSION: f32 = 0.5;
 
 impl MuscleDrive {
+    /// The rhythm a species asks for.
     pub fn new(species: &Species) -> Self {
         Self {
             ratio: species.contraction_ratio,

@@ -15,7 +15,9 @@ pub struct Limit {
     /// The field, as named in [`Species`], RON files and errors (array elements as
     /// `bell_color[3]`).
     pub field: &'static str,
+    /// The least allowed value.
     pub min: f64,
+    /// The greatest allowed value.
     pub max: f64,
     /// The field's unit as a suffix (empty for pure numbers).
     pub unit: &'static str,

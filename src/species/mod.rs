@@ -407,13 +407,19 @@ impl Kernel {
 pub enum SpeciesError {
     /// A parameter is out of range; `field` is its name in [`Species`].
     #[error("species field `{field}`: {reason}")]
-    Invalid { field: &'static str, reason: String },
+    Invalid {
+        /// The field's name in [`Species`].
+        field: &'static str,
+        /// Why it is refused, with the allowed range.
+        reason: String,
+    },
     /// The RON text could not be read.
     #[error("species file: {0}")]
     Parse(String),
 }
 
 impl SpeciesError {
+    /// An error naming `field` and why it is refused.
     pub fn invalid(field: &'static str, reason: impl Into<String>) -> Self {
         Self::Invalid {
             field,

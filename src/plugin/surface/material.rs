@@ -20,8 +20,10 @@ pub type SurfaceMaterial = ExtendedMaterial<StandardMaterial, SurfaceExtension>;
 /// The shape buffers, bound for the vertex stage (bindings 100 and 101).
 #[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
 pub struct SurfaceExtension {
+    /// `u32` per slot: where its packed shape starts in `shapes`.
     #[storage(100, read_only, visibility(vertex))]
     pub offsets: Handle<ShaderBuffer>,
+    /// Every jellyfish's packed shape, `f32`.
     #[storage(101, read_only, visibility(vertex))]
     pub shapes: Handle<ShaderBuffer>,
 }
@@ -43,19 +45,23 @@ impl MaterialExtension for SurfaceExtension {
 }
 
 /// The template materials made for each species: `[bell, tentacles]`.
-#[derive(Resource, Default)]
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
 pub struct SurfaceMaterials {
+    /// Per species, its bell and tentacle materials.
     pub by_species: HashMap<AssetId<Species>, [Handle<SurfaceMaterial>; 2]>,
 }
 
 pub(super) fn plugin(app: &mut App) {
-    app.init_resource::<SurfaceMaterials>().add_systems(
-        PostUpdate,
-        (update, assign)
-            .chain()
-            .after(JellyfishSystems::RebuildMeshes)
-            .run_if(resource_exists::<Assets<SurfaceMaterial>>),
-    );
+    app.init_resource::<SurfaceMaterials>()
+        .register_type::<SurfaceMaterials>()
+        .add_systems(
+            PostUpdate,
+            (update, assign)
+                .chain()
+                .after(JellyfishSystems::RebuildMeshes)
+                .run_if(resource_exists::<Assets<SurfaceMaterial>>),
+        );
 }
 
 fn surface(base: StandardMaterial, buffers: &ShapeBuffers) -> SurfaceMaterial {

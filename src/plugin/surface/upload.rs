@@ -17,7 +17,8 @@ use bevy::render::storage::ShaderBuffer;
 use std::time::Instant;
 
 /// The storage buffers the template materials read.
-#[derive(Resource, Clone, Debug)]
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(Resource)]
 pub struct ShapeBuffers {
     /// `u32` per slot: the start of its block in `shapes`.
     pub offsets: Handle<ShaderBuffer>,

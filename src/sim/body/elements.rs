@@ -9,7 +9,9 @@ use glam::Vec2;
 /// A Hookean spring between two points.
 #[derive(Clone, Copy, Debug)]
 pub struct Spring {
+    /// One end's point index.
     pub a: usize,
+    /// The other end's.
     pub b: usize,
     /// Rest length, m.
     pub rest: f32,
@@ -36,8 +38,11 @@ pub const STIFFENING: f32 = 100.0;
 /// An angular spring holding the angle at `b` between `a` and `c`.
 #[derive(Clone, Copy, Debug)]
 pub struct Hinge {
+    /// One neighbour's point index.
     pub a: usize,
+    /// The point the angle is at.
     pub b: usize,
+    /// The other neighbour's.
     pub c: usize,
     /// Signed rest angle from `a - b` to `c - b`, rad.
     pub rest: f32,
@@ -50,12 +55,15 @@ pub struct Hinge {
 /// A muscle spring across the bell; its rest length follows the contraction function.
 #[derive(Clone, Copy, Debug)]
 pub struct Muscle {
+    /// The point on one side of the bell.
     pub a: usize,
+    /// Its opposite point.
     pub b: usize,
     /// Rest length when relaxed, m.
     pub relaxed: f32,
     /// Current rest length, m (set by the muscle drive each step).
     pub rest: f32,
+    /// N/m per metre of depth.
     pub stiffness: f32,
     /// 0 nearest the apex, 1 at the margin: where the staggered expansion is slowest.
     pub level: f32,

@@ -15,6 +15,7 @@ pub(super) struct Solver {
     /// The solved points, in band order.
     sequence: Vec<usize>,
     matrix: BandedSpd,
+    /// The right-hand side, then the solution.
     pub rhs: Vec<f64>,
     forces: Vec<Vec2>,
 }

@@ -30,8 +30,11 @@ use implicit::Solver;
 use std::ops::Range;
 use tentacle::{TentacleDrag, tentacle_bending};
 
+/// The bell and tentacles as a spring-mass system: points, Hookean springs, angular
+/// springs (hinges) and muscle springs, per metre of slice depth.
 #[derive(Clone)]
 pub struct Body {
+    /// Every point, m: the bell's subumbrella, then the tentacles.
     pub points: Vec<Vec2>,
     /// Positions at rest, relative to the same origin as construction.
     pub rest_points: Vec<Vec2>,
@@ -39,8 +42,11 @@ pub struct Body {
     pub bell: Range<usize>,
     /// Indices of the left and right tentacle points, margin outwards (margin excluded).
     pub tentacles: [Range<usize>; 2],
+    /// Mesoglea and tentacle springs.
     pub springs: Vec<Spring>,
+    /// Angular springs: the wall's bending stiffness.
     pub hinges: Vec<Hinge>,
+    /// Muscle springs across the bell, driven by the contraction function.
     pub muscles: Vec<Muscle>,
     /// The mesoglea's Kelvin–Voigt time τ (viscosity over modulus), s: every element
     /// resists its rate of strain with τ times its stiffness.
@@ -179,10 +185,12 @@ impl Body {
         }
     }
 
+    /// The subumbrella's points, left margin to right margin.
     pub fn bell_points(&self) -> &[Vec2] {
         &self.points[self.bell.clone()]
     }
 
+    /// Index of the apex within [`Self::bell_points`].
     pub fn apex_index(&self) -> usize {
         self.bell.len() / 2
     }

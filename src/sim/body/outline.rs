@@ -84,6 +84,7 @@ pub struct Outline {
 }
 
 impl Outline {
+    /// The outline of a bell whose rest area is `rest_area` (m²).
     pub fn of(bell: &[Vec2], rest_area: f32) -> Self {
         Self {
             area_ratio: signed_area(bell) / rest_area,

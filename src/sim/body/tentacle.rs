@@ -25,6 +25,7 @@ pub(super) struct TentacleDrag {
 }
 
 impl TentacleDrag {
+    /// A tentacle of the species, hanging straight, in segments of `segment` metres.
     pub fn new(species: &Species, segment: f32) -> Self {
         let a = species.tentacle_radius.max(1e-6);
         let length = species.tentacle_length.max(2.0 * a);

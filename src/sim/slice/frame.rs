@@ -29,6 +29,7 @@ const SMOOTHING_PERIODS: f32 = 1.0;
 const RETURN_PERIODS: f32 = 2.0;
 
 impl ComovingFrame {
+    /// A frame at rest, following a bell with stroke period `period` seconds.
     pub fn new(period: f32) -> Self {
         Self {
             position: 0.0,

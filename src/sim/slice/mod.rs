@@ -22,6 +22,8 @@ const SPONGE_RATE: f32 = 4.0;
 /// Water ahead of the bell's apex, in bell diameters: the rest of the box is for the wake.
 const BOW_DIAMETERS: f32 = 1.5;
 
+/// The coupled 2D slice: fluid, bell, tentacles and muscles, stepped together in fixed
+/// steps of its own (DESIGN.md §4).
 #[derive(Clone)]
 pub struct SliceSim {
     species: Species,
@@ -232,6 +234,7 @@ impl SliceSim {
 
     // --- More ---
 
+    /// The species it runs with.
     pub fn species(&self) -> &Species {
         &self.species
     }

@@ -2,16 +2,15 @@
 //! `Species` with sliders that hold the shipped species, and its session applies valid
 //! drafts to living jellyfish, refuses invalid ones, resets to presets and saves files.
 
-use bevy::asset::AssetPlugin;
-use bevy::mesh::MeshPlugin;
+use crate::common::app::Headless;
+use crate::common::shipped_species;
 use bevy::prelude::*;
 use bevy::reflect::structs::Struct;
-use bevy::time::TimeUpdateStrategy;
 use bevy_egui::egui;
 use bevy_jellyfish::editor::params::{OTHER_FIELDS, SECTIONS, Value, species_controls};
 use bevy_jellyfish::editor::{SaveError, SpeciesEditor, remember_presets};
 use bevy_jellyfish::plugin::JellyfishSlice;
-use bevy_jellyfish::{Jellyfish, JellyfishPlugin, JellyfishSettings, Species};
+use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -24,12 +23,8 @@ fn field_names() -> Vec<String> {
 }
 
 fn shipped() -> Vec<Species> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/species");
     let mut all = vec![Species::aurelia()];
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
-        all.push(Species::from_ron(&text).unwrap());
-    }
+    all.extend(shipped_species());
     assert!(all.len() >= 4);
     all
 }
@@ -135,26 +130,18 @@ fn drawing_the_panel_without_input_changes_nothing() {
 
 /// A headless app with the plugin, one species and one jellyfish of it.
 fn app() -> (App, Handle<Species>, Entity) {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin {
-            settings: JellyfishSettings {
-                mesh_resolution_scale: 0.3,
-                ..default()
-            },
+    let mut app = Headless {
+        settings: JellyfishSettings {
+            mesh_resolution_scale: 0.3,
+            ..default()
         },
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
-        16,
-    )))
-    .init_resource::<SpeciesEditor>()
-    .add_systems(Update, remember_presets);
-    app.finish();
-    app.cleanup();
+        frame: Duration::from_millis(16),
+        ..default()
+    }
+    .build(|app| {
+        app.init_resource::<SpeciesEditor>()
+            .add_systems(Update, remember_presets);
+    });
     let preset = Species {
         tentacle_count: 4,
         ..Species::aurelia()

@@ -2,11 +2,13 @@
 //! clock driven by hand. Slices run at the species' own grid and meshes at a reduced
 //! resolution, so the debug build stays quick.
 
+use crate::common::app::Headless;
+use crate::common::species_files;
 use bevy::asset::AssetPlugin;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::ecs::system::RunSystemOnce;
 use bevy::mesh::MeshTag;
-use bevy::mesh::{MeshPlugin, VertexAttributeValues};
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
@@ -15,10 +17,9 @@ use bevy_jellyfish::plugin::{
     SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{
-    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, SliceSim, Species,
-    SpeciesRejected,
+    Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceSim, Species, SpeciesRejected,
 };
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
 fn settings() -> JellyfishSettings {
@@ -29,20 +30,12 @@ fn settings() -> JellyfishSettings {
 }
 
 fn app_with(assets: AssetPlugin) -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
+    Headless {
         assets,
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin {
-            settings: settings(),
-        },
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(frame(60)));
-    app.finish();
-    app.cleanup();
-    app
+        settings: settings(),
+        frame: frame(60),
+    }
+    .build(|_| {})
 }
 
 fn app() -> App {
@@ -380,7 +373,16 @@ fn an_invalid_species_file_is_refused_naming_the_field() {
     assert_eq!(refused[0].species, h.id());
     assert_eq!(refused[0].error.field(), Some("diameter"));
     assert!(refused[0].error.to_string().contains("diameter"));
-    run(&mut app, 3);
+    // The same bad file again (a watcher often reloads twice on one save): said once.
+    app.world()
+        .resource::<AssetServer>()
+        .reload("test.species.ron");
+    for _ in 0..100 {
+        app.update();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    refused.extend(rejections(&mut app));
+    assert_eq!(refused.len(), 1, "one refusal per bad file: {refused:?}");
     let sim = slice(&app, e).sim().unwrap();
     assert_eq!(sim.species().name, "Test");
     assert_eq!(sim.species().diameter, Species::aurelia().diameter);
@@ -403,17 +405,6 @@ fn an_invalid_species_file_is_refused_naming_the_field() {
     });
     assert_eq!(slice(&app, e).sim().unwrap().species().glow, 2.0);
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn species_files() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
-    files
 }
 
 #[test]
@@ -757,24 +748,17 @@ fn a_large_school_starts_over_a_few_frames() {
 /// An app drawing with templates: headless, so it brings its own storage-buffer assets
 /// (what a renderer would upload).
 fn template_app() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin {
-            settings: JellyfishSettings {
-                surfaces: SurfaceMode::Templates,
-                ..settings()
-            },
+    Headless {
+        settings: JellyfishSettings {
+            surfaces: SurfaceMode::Templates,
+            ..settings()
         },
-    ))
-    .init_asset::<ShaderBuffer>()
-    .insert_resource(TimeUpdateStrategy::ManualDuration(frame(60)));
-    app.finish();
-    app.cleanup();
-    app
+        frame: frame(60),
+        ..default()
+    }
+    .build(|app| {
+        app.init_asset::<ShaderBuffer>();
+    })
 }
 
 fn mesh_data_bytes(app: &App) -> f64 {
@@ -1244,4 +1228,40 @@ fn observers_hear_a_jellyfish_start_and_each_stroke_begin() {
         );
         assert_eq!(pair[0].0, e);
     }
+}
+
+/// A blown-up slice is restarted at rest where it was, observers hear it once, and the
+/// jellyfish swims on with finite meshes.
+#[test]
+fn a_blown_up_slice_recovers_and_observers_hear_it() {
+    use bevy_jellyfish::plugin::SliceRecovered;
+    #[derive(Resource, Default)]
+    struct Heard(Vec<(Entity, u32)>);
+    let (mut app, _, e) = one_jellyfish();
+    app.init_resource::<Heard>()
+        .add_observer(|r: On<SliceRecovered>, mut heard: ResMut<Heard>| {
+            heard.0.push((r.entity, r.recoveries))
+        });
+    run(&mut app, 30);
+    let before = app.world().get::<Transform>(e).unwrap().translation;
+    app.world_mut()
+        .get_mut::<JellyfishSlice>(e)
+        .unwrap()
+        .sim_mut_for_tests()
+        .expect("a live slice")
+        .poison_for_tests();
+    run(&mut app, 60);
+    assert_eq!(app.world().resource::<Heard>().0, [(e, 1)], "heard once");
+    assert_eq!(slice(&app, e).sim().unwrap().recoveries(), 1);
+    let after = app.world().get::<Transform>(e).unwrap().translation;
+    assert!(after.is_finite(), "the transform stays finite: {after}");
+    assert!(
+        after.distance(before) < 0.05,
+        "restarted where it was: {before} → {after}"
+    );
+    let positions = umbrella_positions(&app, e);
+    assert!(
+        positions.iter().flatten().all(|x| x.is_finite()),
+        "finite meshes"
+    );
 }

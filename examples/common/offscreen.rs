@@ -1,8 +1,9 @@
 //! Offscreen rendering: no window, no runner; we pump the app ourselves and capture the
 //! camera's image target to PNG (Bevy's `externally_driven_headless_renderer` example).
-//! Without a GPU it runs on Mesa's software Vulkan (`mesa-vulkan-drivers`).
+//! Without a GPU it runs on Mesa's software Vulkan (`mesa-vulkan-drivers`). Shared by the
+//! examples and the render test (`#[path]`-included as `mod screenshot`).
+#![allow(dead_code)] // each example or test that includes it uses a part
 
-use crate::camera::OffscreenTarget;
 use bevy::{
     app::SubApps,
     asset::RenderAssetUsages,
@@ -25,6 +26,10 @@ use std::time::Duration;
 /// Why no picture can be rendered here.
 #[derive(Debug)]
 pub struct NoAdapter(pub String);
+
+/// Render into this image instead of the window: the scene's camera looks for it.
+#[derive(Resource, Clone)]
+pub struct OffscreenTarget(pub RenderTarget);
 
 impl std::fmt::Display for NoAdapter {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

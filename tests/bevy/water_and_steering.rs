@@ -2,39 +2,20 @@
 //! moves those near it, a swimmer held in a current stays put, commanded turns happen
 //! during strokes only, and all of it replays bit for bit.
 
-use bevy::asset::AssetPlugin;
-use bevy::mesh::MeshPlugin;
+use crate::common::app::Headless;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     AmbientWater, JellyfishSlice, Resting, Steering, SwimMotion, TankWater,
 };
-use bevy_jellyfish::{Jellyfish, JellyfishPlugin, JellyfishSettings, Species};
+use bevy_jellyfish::{Jellyfish, Species};
 use std::time::Duration;
 
 /// World units per metre: the aquarium's scale (a 40 mm bell is 1.2 units across).
 const SCALE: f32 = 30.0;
 
 fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin {
-            settings: JellyfishSettings {
-                mesh_resolution_scale: 0.25,
-                ..default()
-            },
-        },
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / 60.0,
-    )));
-    app.finish();
-    app.cleanup();
-    app
+    Headless::default().build(|_| {})
 }
 
 /// Aurelia with a light mesh (8 tentacles) for the debug build.

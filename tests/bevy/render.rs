@@ -5,34 +5,17 @@
 //! says so and passes, unless `JELLYFISH_REQUIRE_RENDER=1` (set by `.ci/run` once Mesa is
 //! installed), when it fails.
 //!
-//! The scene is the example's own modules, included here.
+//! The scene is the example's own modules, included at the crate root (`main.rs`).
 
-#[path = "../examples/aquarium/camera.rs"]
-mod camera;
-#[path = "../examples/aquarium/scene.rs"]
-mod scene;
-#[path = "../examples/aquarium/school.rs"]
-mod school;
-#[path = "../examples/aquarium/screenshot.rs"]
-mod screenshot;
-#[path = "../examples/aquarium/snow.rs"]
-mod snow;
-#[path = "../examples/aquarium/stats.rs"]
-mod stats;
-#[path = "../examples/aquarium/tank.rs"]
-mod tank;
-#[path = "../examples/aquarium/water.rs"]
-mod water;
-
+use crate::common::app::Headless;
+use crate::scene::AquariumPlugin;
+use crate::school::{self, School};
+use crate::screenshot::Offscreen;
+use crate::tank;
 use bevy::diagnostic::DiagnosticsStore;
-use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{SurfaceMode, SurfacePath};
-use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
-use scene::AquariumPlugin;
-use school::School;
-use screenshot::Offscreen;
+use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -257,32 +240,16 @@ fn templates_draw_what_cpu_meshes_draw() {
 /// (jellyfish swim a tank's width in well under that).
 #[test]
 fn schools_stay_in_the_tank() {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin {
-            file_path: concat!(env!("CARGO_MANIFEST_DIR"), "/assets").into(),
-            ..default()
-        },
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin {
-            settings: JellyfishSettings {
-                mesh_resolution_scale: 0.25,
-                ..default()
-            },
-        },
-        school::plugin,
-    ))
-    .insert_resource(School {
-        per_species: 2,
-        seed: 11,
-    })
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / 30.0,
-    )));
-    app.finish();
-    app.cleanup();
+    let mut app = Headless {
+        frame: Duration::from_secs_f64(1.0 / 30.0),
+        ..default()
+    }
+    .build(|app| {
+        app.add_plugins(school::plugin).insert_resource(School {
+            per_species: 2,
+            seed: 11,
+        });
+    });
     let (mut last, mut path) = (Vec::new(), vec![0.0f32; 6]);
     for frame in 0..30 * 90 {
         app.update();
