@@ -12,6 +12,8 @@ use super::kernel::{self, Stencil};
 use super::pressure::PoissonSolver;
 use glam::Vec2;
 
+/// The water of one slice: a staggered (MAC) grid of velocities with pressure solved
+/// exactly, stepped by `advect`, `diffuse` and `project`.
 #[derive(Clone)]
 pub struct Fluid {
     /// Cells per side.
@@ -30,6 +32,7 @@ pub struct Fluid {
     pub nu: f32,
     /// Density, kg/m³.
     pub rho: f32,
+    /// How velocities are carried along (see [`Advection`]).
     pub advection: Advection,
     /// How points read and spread onto the faces (see [`Kernel`]).
     pub kernel: Kernel,
@@ -63,11 +66,15 @@ pub const MAX_DIFFUSION_SWEEPS: usize = 32;
 /// Which staggered component a sample refers to.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Component {
+    /// Horizontal velocity, on the vertical faces.
     U,
+    /// Vertical velocity, on the horizontal faces.
     V,
 }
 
 impl Fluid {
+    /// Still water on `n`×`n` cells of side `h` (m), kinematic viscosity `nu` (m²/s),
+    /// density `rho` (kg/m³).
     pub fn new(n: usize, h: f32, nu: f32, rho: f32) -> Self {
         let faces = (n + 1) * n;
         Self {
@@ -123,6 +130,7 @@ impl Fluid {
             + self.poisson.bytes()
     }
 
+    /// One step of `dt` seconds: forces, advection, viscosity, projection.
     pub fn step(&mut self, dt: f32) {
         self.advect(dt);
         self.apply_force(dt);
@@ -204,6 +212,7 @@ impl Fluid {
                 } else {
                     Sample::Linear(None)
                 },
+                self.mirror,
             );
             std::mem::swap(&mut self.u, &mut self.scratch_u);
             std::mem::swap(&mut self.v, &mut self.scratch_v);
@@ -218,6 +227,7 @@ impl Fluid {
             s,
             [&mut self.scratch_u, &mut self.scratch_v],
             Sample::Linear(Some([&mut self.bounds_u, &mut self.bounds_v])),
+            self.mirror,
         );
         // Back: back = A⁻¹(A(u)), with the same velocity and the step reversed.
         semi_lagrangian(
@@ -227,6 +237,7 @@ impl Fluid {
             -s,
             [&mut self.back_u, &mut self.back_v],
             Sample::Linear(None),
+            self.mirror,
         );
         for (out, fwd, orig, bounds) in [
             (&mut self.back_u, &self.scratch_u, &self.u, &self.bounds_u),
@@ -490,6 +501,10 @@ impl Fluid {
 /// `s = dt/h` cells per unit velocity (negative: backwards). Side-wall faces are left as
 /// they are: the caller zeroes them. A trace that leaves through an open end reads the
 /// boundary face, where the stream enters.
+///
+/// With `mirror`, the flow is mirror-symmetric about the axis (see [`Fluid::symmetrise`]):
+/// only the faces up to the axis are traced and the rest are their mirror images, which
+/// halves the cost.
 fn semi_lagrangian(
     src: [&[f32]; 2],
     vel: [&[f32]; 2],
@@ -497,12 +512,14 @@ fn semi_lagrangian(
     s: f32,
     out: [&mut Vec<f32>; 2],
     sample: Sample,
+    mirror: bool,
 ) {
     // One loop per sampler, so each inner loop is compiled without the others' branches.
+    let traced = if mirror { (n / 2 + 1).min(n) } else { n };
     match sample {
-        Sample::Linear(None) => sweep::<LINEAR>(src, vel, n, s, out, None),
-        Sample::Linear(bounds) => sweep::<BOUNDED>(src, vel, n, s, out, bounds),
-        Sample::Cubic => sweep::<CUBIC>(src, vel, n, s, out, None),
+        Sample::Linear(None) => sweep::<LINEAR>(src, vel, n, traced, s, out, None),
+        Sample::Linear(bounds) => sweep::<BOUNDED>(src, vel, n, traced, s, out, bounds),
+        Sample::Cubic => sweep::<CUBIC>(src, vel, n, traced, s, out, None),
     }
 }
 
@@ -510,10 +527,12 @@ const LINEAR: u8 = 0;
 const BOUNDED: u8 = 1;
 const CUBIC: u8 = 2;
 
+/// Traces the faces of columns below `traced` (all of them: `n`), mirroring the rest.
 fn sweep<const MODE: u8>(
     src: [&[f32]; 2],
     vel: [&[f32]; 2],
     n: usize,
+    traced: usize,
     s: f32,
     out: [&mut Vec<f32>; 2],
     bounds: Option<[&mut Vec<(f32, f32)>; 2]>,
@@ -529,7 +548,7 @@ fn sweep<const MODE: u8>(
         let row = j * (n + 1);
         let u_row = &u[row..][..n + 1];
         let (v0, v1) = (&v[j * n..][..n], &v[(j + 1) * n..][..n]);
-        for i in 1..n {
+        for i in 1..traced.min(n) {
             let cu = s * u_row[i];
             let cv = s * 0.25 * (v0[i - 1] + v0[i] + v1[i - 1] + v1[i]);
             let (x, y) = (cell(i) - cu, cell(j) - cv);
@@ -559,7 +578,7 @@ fn sweep<const MODE: u8>(
             &u[below * (n + 1)..][..n + 1],
             &u[above * (n + 1)..][..n + 1],
         );
-        for i in 0..n {
+        for i in 0..traced {
             let cv = s * v_row[i];
             let cu = s * 0.25 * (u0[i] + u0[i + 1] + u1[i] + u1[i + 1]);
             let (x, y) = (cell(i) - cu, cell(j) - cv);
@@ -576,6 +595,47 @@ fn sweep<const MODE: u8>(
                     out_v,
                     bounds_v.as_deref_mut(),
                 ),
+            }
+        }
+    }
+    if traced < n {
+        mirror(out_u, out_v, bounds_u, bounds_v, n);
+    }
+}
+
+/// Fills the faces past the axis with the mirror images of the traced ones (the indices
+/// of [`Fluid::symmetrise`]): `u` changes sign, `v` does not, and a corner range
+/// `(lo, hi)` of `u` becomes `(-hi, -lo)`.
+fn mirror(
+    u: &mut [f32],
+    v: &mut [f32],
+    bounds_u: Option<&mut Vec<(f32, f32)>>,
+    bounds_v: Option<&mut Vec<(f32, f32)>>,
+    n: usize,
+) {
+    let c = n / 2;
+    for row in u.chunks_exact_mut(n + 1) {
+        for m in c + 1..n {
+            row[m] = -row[2 * c + 1 - m];
+        }
+    }
+    for row in v.chunks_exact_mut(n) {
+        for m in c + 1..n {
+            row[m] = row[2 * c - m];
+        }
+    }
+    if let Some(bounds) = bounds_u {
+        for row in bounds.chunks_exact_mut(n + 1) {
+            for m in c + 1..n {
+                let (lo, hi) = row[2 * c + 1 - m];
+                row[m] = (-hi, -lo);
+            }
+        }
+    }
+    if let Some(bounds) = bounds_v {
+        for row in bounds.chunks_exact_mut(n) {
+            for m in c + 1..n {
+                row[m] = row[2 * c - m];
             }
         }
     }
