@@ -7,6 +7,9 @@
 //! the water (the paper's Fig. 6), and the body's springs coloured by tension (blue
 //! compressed, red stretched). The diagnostics log prints simulation and meshing time.
 
+#[path = "common/species.rs"]
+mod common;
+
 use bevy::diagnostic::{FrameTimeDiagnosticsPlugin, LogDiagnosticsPlugin};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::platform::collections::HashSet;
@@ -18,8 +21,12 @@ use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, SliceSim,
 const SCALE: f32 = 25.0;
 const PARTICLES: usize = 400;
 
-fn main() {
+fn main() -> AppExit {
     let name = std::env::args().nth(1).unwrap_or_else(|| "aurelia".into());
+    if let Err(e) = common::find_species_file(&name, "single -- <name>") {
+        eprintln!("{e}");
+        return AppExit::error();
+    }
     App::new()
         .add_plugins((
             DefaultPlugins,
@@ -35,7 +42,7 @@ fn main() {
         .init_resource::<Overlay>()
         .add_systems(Startup, setup)
         .add_systems(Update, (orbit, toggle_overlay, draw_overlay).chain())
-        .run();
+        .run()
 }
 
 #[derive(Resource)]

@@ -18,6 +18,8 @@
 
 mod bench;
 mod camera;
+#[path = "../common/species.rs"]
+mod common;
 mod scene;
 mod school;
 #[path = "../common/offscreen.rs"]
@@ -288,30 +290,11 @@ fn promote_all_at(at: u32) -> impl FnMut(ResMut<JellyfishSettings>, Local<u32>) 
     }
 }
 
-/// The species files the schools load, where Bevy will look for them (`BEVY_ASSET_ROOT`,
-/// else `CARGO_MANIFEST_DIR`, else the executable's folder, then `assets/`): a missing one
-/// is said at once, with the path and the fix, instead of an empty tank.
+/// The species files the schools load: a missing one is said at once, with the path and
+/// the fix, instead of an empty tank.
 fn species_files_present() -> Result<(), String> {
-    let root = std::env::var_os("BEVY_ASSET_ROOT")
-        .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
-        .map(PathBuf::from)
-        .or_else(|| {
-            std::env::current_exe()
-                .ok()
-                .and_then(|exe| exe.parent().map(PathBuf::from))
-        })
-        .unwrap_or_default();
     for (name, _) in school::SPECIES {
-        let path = root
-            .join("assets/species")
-            .join(format!("{name}.species.ron"));
-        if !path.is_file() {
-            return Err(format!(
-                "no species file at {}: run it from the repository (`cargo run --release \
-                 --example aquarium`) or set BEVY_ASSET_ROOT to the folder holding assets/",
-                path.display()
-            ));
-        }
+        common::find_species_file(name, "aquarium")?;
     }
     Ok(())
 }
