@@ -1,5 +1,7 @@
 //! The paper's Fig. 9 rendered offscreen: rows expanded (rest) and contracted, columns plain
-//! disc extrapolation, structural, compression, unstructured, and all variation together.
+//! disc extrapolation, structural, compression, unstructured, and all of the paper's
+//! variation together (`Species::with_paper_variations`); the last column is the shipped
+//! moon jelly's smoother surface.
 //!
 //! `cargo run --example variations -- --out variations.png [--elevation 22]` (degrees the
 //! camera looks down; negative looks up into the subumbrella).
@@ -21,7 +23,7 @@ use bevy_jellyfish::shape::{JellyMesh, SliceOutline, SurfaceBuffers};
 use screenshot::{Offscreen, OffscreenTarget};
 use std::path::PathBuf;
 
-const WIDTH: u32 = 1500;
+const WIDTH: u32 = 1800;
 const HEIGHT: u32 = 720;
 /// Metres to scene units: a 40 mm bell becomes one unit wide.
 const SCALE: f32 = 25.0;
@@ -61,9 +63,10 @@ fn arg(name: &str) -> Option<String> {
     )
 }
 
-/// The five columns of Fig. 9: the species with only the named variation left on.
-fn columns() -> [(&'static str, Species); 5] {
-    let all = Species::aurelia();
+/// The five columns of Fig. 9 (the species with only the named variation of the paper
+/// left on), then the shipped species as it is.
+fn columns() -> [(&'static str, Species); 6] {
+    let all = Species::aurelia().with_paper_variations();
     let plain = Species {
         structural_scale: 0.0,
         compression_scale: 0.0,
@@ -93,7 +96,8 @@ fn columns() -> [(&'static str, Species); 5] {
                 ..plain
             },
         ),
-        ("all", all),
+        ("all (paper)", all),
+        ("shipped", Species::aurelia()),
     ]
 }
 
@@ -126,7 +130,7 @@ fn spawn_scene(world: &mut World, target: RenderTarget, elevation: f32) {
         for (col, (name, sp)) in columns().iter().enumerate() {
             let jelly = JellyMesh::from_slice(&slice.view(), sp, SEED, 0.0)
                 .unwrap_or_else(|e| panic!("{row}/{name}: {e}"));
-            let x = (col as f32 - 2.0) * 1.45;
+            let x = (col as f32 - 2.5) * 1.45;
             let at = Transform::from_xyz(x, *y, 0.0).with_scale(Vec3::splat(SCALE));
             for (buffers, material) in [(&jelly.umbrella, &bell), (&jelly.tentacles, &tentacle)] {
                 let mesh = world.resource_mut::<Assets<Mesh>>().add(to_mesh(buffers));

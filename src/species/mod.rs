@@ -170,12 +170,15 @@ impl Species {
             tentacle_length: 0.03,
             tentacle_cross_section: 0.01,
             tentacle_radius: 0.0004,
-            structural_scale: 0.375,
+            // A smooth, taut bell, as in photographs of living medusae: gentle lobes, faint
+            // ripples as it contracts, a hint of irregularity. The paper's Fig. 12 values,
+            // several times larger, crumple the dome: `with_paper_variations`.
+            structural_scale: 0.06,
             structural_frequency: 8.0,
             structural_abs: false,
-            compression_scale: 0.15,
+            compression_scale: 0.08,
             compression_frequency: 8.0,
-            unstructured_scale: 2.25,
+            unstructured_scale: 0.3,
             noise_frequency_lat: 2.0,
             noise_frequency_lon: 8.0,
             noise_frequency_time: 0.01,
@@ -202,11 +205,11 @@ impl Species {
             tentacle_count: 100,
             tentacle_length: 0.045,
             tentacle_radius: 0.00025,
-            structural_scale: 0.25,
+            structural_scale: 0.05,
             structural_frequency: 16.0,
             structural_abs: true,
             compression_frequency: 12.0,
-            unstructured_scale: 1.5,
+            unstructured_scale: 0.2,
             bell_color: [0.8, 0.95, 0.9, 0.25],
             glow_color: [0.3, 1.0, 0.45],
             glow: 0.9,
@@ -229,9 +232,9 @@ impl Species {
             tentacle_count: 4,
             tentacle_length: 0.025,
             tentacle_radius: 0.0003,
-            structural_scale: 0.2,
+            structural_scale: 0.04,
             structural_frequency: 4.0,
-            unstructured_scale: 1.0,
+            unstructured_scale: 0.15,
             bell_color: [0.95, 0.8, 0.85, 0.3],
             glow_color: [1.0, 0.35, 0.5],
             glow: 0.5,
@@ -242,6 +245,22 @@ impl Species {
     /// Every shipped species, as in `assets/species/`.
     pub fn presets() -> [Species; 3] {
         [Self::aurelia(), Self::aequorea(), Self::sarsia()]
+    }
+
+    /// The paper's surface variation (its Fig. 9 and 12): structural lobes 0.375, compression
+    /// ripples 0.15 and Perlin noise 2.25 of the thickness, eight lobes and ripples. Only the
+    /// shape changes, not the slice. The shipped species are smoother.
+    pub fn with_paper_variations(mut self) -> Self {
+        self.structural_scale = 0.375;
+        self.structural_frequency = 8.0;
+        self.structural_abs = false;
+        self.compression_scale = 0.15;
+        self.compression_frequency = 8.0;
+        self.unstructured_scale = 2.25;
+        self.noise_frequency_lat = 2.0;
+        self.noise_frequency_lon = 8.0;
+        self.noise_frequency_time = 0.01;
+        self
     }
 
     /// The paper's numerics (its Fig. 12 and section 3.2): grid 100 over a box ten

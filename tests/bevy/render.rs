@@ -14,7 +14,8 @@ use crate::screenshot::Offscreen;
 use crate::tank;
 use bevy::diagnostic::DiagnosticsStore;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::{SurfaceMode, SurfacePath};
+use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::{JellyfishSlice, SurfaceMode, SurfacePath};
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -197,6 +198,25 @@ fn templates_draw_what_cpu_meshes_draw() {
         };
         let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
         std::fs::create_dir_all(&dir).unwrap();
+        // The species files load in the background, in a frame that depends on the machine's
+        // load: hold the clock until every jellyfish has started, so that both renders show
+        // the same moment of the same strokes.
+        let world = offscreen.world_mut();
+        world.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
+        for _ in 0..600 {
+            offscreen.update();
+            let world = offscreen.world_mut();
+            let mut slices = world.query::<&JellyfishSlice>();
+            let started = slices.iter(world).filter(|s| s.started()).count();
+            if started == 3 * PER_SPECIES {
+                break;
+            }
+        }
+        offscreen
+            .world_mut()
+            .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+                1.0 / 60.0,
+            )));
         let mut shot = |frames: usize, name: String| {
             for _ in 0..frames {
                 offscreen.update();
