@@ -1,7 +1,8 @@
 //! The least a game needs: the plugin, a camera, a light and one moon jelly, from the
 //! preset in code (no asset files).
 //!
-//! `cargo run --release --example minimal`
+//! `cargo run --release --features examples --example minimal`. In a game of its own it
+//! needs only `bevy` (default features) and `bevy_jellyfish` as dependencies.
 
 use bevy::prelude::*;
 use bevy_jellyfish::prelude::*;
