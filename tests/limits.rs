@@ -6,7 +6,7 @@
 
 use bevy_jellyfish::shape::{JellyMesh, build_into};
 use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
-use bevy_jellyfish::species::{Advection, Kernel};
+use bevy_jellyfish::species::{Advection, GonadShape, Kernel};
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::{Duration, Instant};
 
@@ -85,6 +85,20 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "tentacle_length" => s.tentacle_length = v,
         "tentacle_cross_section" => s.tentacle_cross_section = v,
         "tentacle_radius" => s.tentacle_radius = v,
+        "manubrium_length" => s.manubrium_length = v,
+        "manubrium_radius" => s.manubrium_radius = v,
+        "oral_arm_count" => s.oral_arm_count = count(value),
+        "oral_arm_length" => s.oral_arm_length = v,
+        "oral_arm_width" => s.oral_arm_width = v,
+        "oral_arm_frill" => s.oral_arm_frill = v,
+        "gonad_count" => s.gonad_count = count(value),
+        "gonad_size" => s.gonad_size = v,
+        "gonad_color[0]" => s.gonad_color[0] = v,
+        "gonad_color[1]" => s.gonad_color[1] = v,
+        "gonad_color[2]" => s.gonad_color[2] = v,
+        "gonad_color[3]" => s.gonad_color[3] = v,
+        "radial_canal_count" => s.radial_canal_count = count(value),
+        "canal_width" => s.canal_width = v,
         "structural_scale" => s.structural_scale = v,
         "structural_frequency" => s.structural_frequency = v,
         "compression_scale" => s.compression_scale = v,
@@ -122,6 +136,7 @@ fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
     s.advection = Advection::ALL[(rng.next() % Advection::ALL.len() as u64) as usize];
     s.kernel = Kernel::ALL[(rng.next() % Kernel::ALL.len() as u64) as usize];
     s.structural_abs = rng.next().is_multiple_of(2);
+    s.gonad_shape = GonadShape::ALL[(rng.next() % GonadShape::ALL.len() as u64) as usize];
     s
 }
 
@@ -133,6 +148,10 @@ fn within_joint_limits(s: &mut Species) {
     s.thickness = s.thickness.min(0.5 * s.diameter.min(2.0 * s.height));
     s.tentacle_length = s.tentacle_length.min(10.0 * s.diameter);
     s.tentacle_radius = s.tentacle_radius.min(0.05 * s.diameter);
+    s.manubrium_length = s.manubrium_length.min(2.0 * s.diameter);
+    s.manubrium_radius = s.manubrium_radius.min(0.25 * s.diameter);
+    s.oral_arm_length = s.oral_arm_length.min(5.0 * s.diameter);
+    s.oral_arm_width = s.oral_arm_width.min(0.5 * s.diameter);
     while mesh_vertices(s) > MAX_MESH_VERTICES {
         if s.tentacle_count > 8 {
             s.tentacle_count /= 2;

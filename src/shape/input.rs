@@ -58,6 +58,8 @@ pub fn check(view: &SliceView, species: &Species, time: f32) -> Result<(), Shape
         ("rest_bell", view.rest_bell),
         ("tentacles[0]", view.tentacles[0]),
         ("tentacles[1]", view.tentacles[1]),
+        ("oral_arms[0]", view.oral_arms[0]),
+        ("oral_arms[1]", view.oral_arms[1]),
     ] {
         if !finite(points) {
             return Err(ShapeError::NonFinitePoint(name));
@@ -69,6 +71,9 @@ pub fn check(view: &SliceView, species: &Species, time: f32) -> Result<(), Shape
         ("margin_thickness_ratio", s.margin_thickness_ratio),
         ("contraction_ratio", s.contraction_ratio),
         ("tentacle_radius", s.tentacle_radius),
+        ("manubrium_radius", s.manubrium_radius),
+        ("oral_arm_width", s.oral_arm_width),
+        ("oral_arm_frill", s.oral_arm_frill),
         ("structural_scale", s.structural_scale),
         ("structural_frequency", s.structural_frequency),
         ("compression_scale", s.compression_scale),

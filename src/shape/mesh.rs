@@ -4,6 +4,7 @@ use super::buffers::SurfaceBuffers;
 use super::discs::angles;
 use super::input::{ShapeError, check};
 use super::noise_field::{NoiseField, NoiseKey};
+use super::oral::{self, ORAL_SIDES, OralScratch, OralStyle};
 use super::profile::Profile;
 use super::tentacles::{self, TentacleLayout, TentacleScratch};
 use super::umbrella::{self, Column};
@@ -22,6 +23,8 @@ pub struct Resolution {
     pub segments: usize,
     /// How many tentacles and how finely each is drawn.
     pub tentacles: TentacleLayout,
+    /// The manubrium and oral arms ([`oral`](super::oral)), drawn after the tentacles.
+    pub oral: TentacleLayout,
 }
 
 impl Resolution {
@@ -42,6 +45,7 @@ impl Resolution {
             ((n as f32 * scale).round() as usize).clamp(lo as usize, hi as usize)
         };
         let rings = scaled(species.mesh_rings, 2, 256);
+        let oral = crate::species::limits::oral_tubes(species).min(64);
         Self {
             rings,
             segments: scaled(species.mesh_segments, 3, 512),
@@ -57,6 +61,11 @@ impl Resolution {
                 // smoothly with fewer): tentacles are most of a fringed jellyfish's vertices.
                 points: rings / 2 + 1,
             },
+            oral: TentacleLayout {
+                count: oral,
+                sides: ORAL_SIDES,
+                points: rings / 2 + 1,
+            },
         }
     }
 
@@ -65,13 +74,15 @@ impl Resolution {
         umbrella::vertex_count(self.rings, self.segments)
     }
 
-    /// Vertices of all tentacles at this resolution.
+    /// Vertices of the hanging parts at this resolution: all tentacles, the manubrium and
+    /// the oral arms.
     pub fn tentacle_vertices(&self) -> usize {
-        self.tentacles.vertex_count()
+        self.tentacles.vertex_count() + self.oral.vertex_count()
     }
 }
 
-/// The umbrella and tentacle surfaces of one jellyfish (two meshes for the plugin).
+/// The umbrella and the hanging parts (tentacles, manubrium, oral arms) of one jellyfish:
+/// two meshes for the plugin.
 ///
 /// Topology (indices, UVs, buffer lengths) is fixed by the [`Resolution`]; a frame at the
 /// same resolution only overwrites positions and normals, so no buffer reallocates.
@@ -80,7 +91,7 @@ impl Resolution {
 pub struct JellyMesh {
     /// The bell: exumbrella, subumbrella and the margin between them.
     pub umbrella: SurfaceBuffers,
-    /// Every tentacle, as tubes.
+    /// Every tentacle as a tube, then the manubrium and the oral arms.
     pub tentacles: SurfaceBuffers,
     resolution: Option<Resolution>,
     scratch: Scratch,
@@ -92,6 +103,7 @@ struct Scratch {
     angles: Vec<(f32, f32)>,
     columns: Vec<Column>,
     tentacles: TentacleScratch,
+    oral: OralScratch,
     noise: NoiseField,
 }
 
@@ -147,7 +159,10 @@ pub fn build_at(
     let s = &mut mesh.scratch;
     if mesh.resolution != Some(res) {
         umbrella::write_topology(res.rings, res.segments, &mut mesh.umbrella);
-        tentacles::write_topology(&res.tentacles, &mut mesh.tentacles);
+        mesh.tentacles.reset(res.tentacle_vertices());
+        tentacles::write_topology(&res.tentacles, 0, &mut mesh.tentacles);
+        let first = res.tentacles.vertex_count();
+        tentacles::write_topology(&res.oral, first, &mut mesh.tentacles);
         angles(res.segments, &mut s.angles);
         s.noise.set_samples(
             umbrella::noise_samples(&s.angles, res.rings)
@@ -195,5 +210,20 @@ pub fn build_at(
         &mut mesh.tentacles,
         &mut s.tentacles,
     );
+    oral::write_surface(
+        &res.oral,
+        res.tentacles.vertex_count(),
+        &OralStyle::of(species),
+        view.oral_arms,
+        view.bell[n / 2],
+        &aperture_disc(s.profile.margin()),
+        &mut mesh.tentacles,
+        &mut s.oral,
+    );
     Ok(())
+}
+
+/// The aperture's disc, whose radial directions orient the tentacles and the oral arms.
+pub(crate) fn aperture_disc(margin: &super::profile::RingPair) -> super::discs::Disc {
+    super::discs::Disc::through(margin.subumbrella[0], margin.subumbrella[1], glam::Vec2::X)
 }

@@ -5,7 +5,8 @@
 //! - [`profile`]: the 2D rendering model: exumbrella from the mesoglea thickness, cubic
 //!   [`spline`] resampling into opposite pairs.
 //! - [`discs`]: each pair swept into a disc about its own axis.
-//! - [`umbrella`], [`tentacles`]: discs joined into closed surfaces in [`buffers`];
+//! - [`umbrella`], [`tentacles`], [`oral`] (manubrium and oral arms): discs joined into
+//!   closed surfaces in [`buffers`];
 //!   the umbrella's normals come from its ring grid (`normals.rs`).
 //! - [`variation`]: structural, compression and unstructured variation (Fig. 9); the noise
 //!   is cached per vertex in [`noise_field`].
@@ -18,6 +19,7 @@ pub mod input;
 pub mod mesh;
 pub mod noise_field;
 mod normals;
+pub mod oral;
 pub mod outline;
 pub mod packed;
 pub mod perlin;

@@ -3,6 +3,7 @@
 //! simulation.
 
 use crate::sim::SliceView;
+use crate::sim::oral_arms::OralArms;
 use crate::species::Species;
 use glam::Vec2;
 use std::f32::consts::PI;
@@ -16,6 +17,8 @@ pub struct SliceOutline {
     pub rest_bell: Vec<Vec2>,
     /// The two tentacle chains of the slice, margin first.
     pub tentacles: [Vec<Vec2>; 2],
+    /// The manubrium's and oral arms' chains, hanging at rest from the apex.
+    pub oral_arms: [Vec<Vec2>; 2],
 }
 
 impl SliceOutline {
@@ -59,10 +62,12 @@ impl SliceOutline {
                 .collect()
         };
         let tentacles = [chain(bell[0], -1.0), chain(bell[n - 1], 1.0)];
+        let oral_arms = OralArms::new(species, bell[mid], Vec2::Y).chains;
         Self {
             bell,
             rest_bell,
             tentacles,
+            oral_arms,
         }
     }
 
@@ -72,6 +77,7 @@ impl SliceOutline {
             bell: &self.bell,
             rest_bell: &self.rest_bell,
             tentacles: [&self.tentacles[0], &self.tentacles[1]],
+            oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
         }
     }
 }

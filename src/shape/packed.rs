@@ -11,13 +11,15 @@
 //!
 //! Block layout (`f32` offsets; counts stored as `u32` bits): the header (`H_*`), then
 //! `rings + 1` rings of [`RING`] values (subumbrella disc, exumbrella disc, the two
-//! mesoglea normals, latitude, contraction), then `points` tentacle discs of [`DISC`].
+//! mesoglea normals, latitude, contraction), then `points` tentacle discs of [`DISC`],
+//! then, if the species has oral tubes, `points` manubrium discs and `points` arm discs.
 //!
 //! [`build_into`]: super::build_into
 
 use super::discs::Disc;
 use super::input::{ShapeError, check};
 use super::mesh::Resolution;
+use super::oral::{self, ORAL_SIDES, OralStyle};
 use super::perlin::perlin4;
 use super::profile::Profile;
 use super::tentacles::{self, SIDEWAYS, TentacleLayout};
@@ -63,8 +65,20 @@ pub const H_TENTACLE_RADIUS: usize = 15;
 pub const H_APERTURE: usize = 16;
 /// The margin's two mesoglea normals, left then right.
 pub const H_MARGIN_NORMALS: usize = 21;
+/// Tubes of the manubrium and the oral arms.
+pub const H_ORAL: usize = 25;
+/// 1 if oral tube 0 is a manubrium.
+pub const H_MANUBRIUM: usize = 26;
+/// The manubrium's radius, m.
+pub const H_MANUBRIUM_RADIUS: usize = 27;
+/// An oral arm's blade width, m.
+pub const H_ARM_WIDTH: usize = 28;
+/// The arms' ruffle depth, a fraction of the width.
+pub const H_ARM_FRILL: usize = 29;
+/// Ruffle waves along an arm.
+pub const H_ARM_WAVES: usize = 30;
 /// Header length.
-pub const HEADER: usize = 25;
+pub const HEADER: usize = 31;
 /// Values per disc: centre (x, y), radius, radial (x, y).
 pub const DISC: usize = 5;
 /// Values per ring: subumbrella disc, exumbrella disc, normals (left, right), latitude,
@@ -73,7 +87,16 @@ pub const RING: usize = 2 * DISC + 6;
 
 /// The length of the block for a resolution.
 pub fn block_len(res: &Resolution) -> usize {
-    HEADER + (res.rings + 1) * RING + res.tentacles.points * DISC
+    HEADER + (res.rings + 1) * RING + res.tentacles.points * DISC + oral_discs(res) * DISC
+}
+
+/// Discs of the manubrium and the arms in the block.
+fn oral_discs(res: &Resolution) -> usize {
+    if res.oral.count > 0 {
+        2 * res.oral.points
+    } else {
+        0
+    }
 }
 
 /// Scratch reused between jellyfish and frames.
@@ -81,6 +104,7 @@ pub fn block_len(res: &Resolution) -> usize {
 pub struct ShapePacker {
     profile: Profile,
     discs: Vec<Disc>,
+    oral_discs: Vec<Disc>,
 }
 
 impl ShapePacker {
@@ -129,6 +153,13 @@ impl ShapePacker {
         header[H_LON_RADIUS] = species.noise_frequency_lon / TAU;
         header[H_TAU] = variation.time_coordinate() as f32;
         header[H_TENTACLE_RADIUS] = species.tentacle_radius;
+        let style = OralStyle::of(species);
+        header[H_ORAL] = bits(res.oral.count);
+        header[H_MANUBRIUM] = if style.manubrium { 1.0 } else { 0.0 };
+        header[H_MANUBRIUM_RADIUS] = style.manubrium_radius;
+        header[H_ARM_WIDTH] = style.arm_width;
+        header[H_ARM_FRILL] = style.frill;
+        header[H_ARM_WAVES] = style.waves;
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -145,7 +176,18 @@ impl ShapePacker {
             ring[2 * DISC + 4] = pair.latitude;
             ring[2 * DISC + 5] = pair.contraction;
         }
-        for disc in &self.discs {
+        if res.oral.count > 0 {
+            oral::chain_discs(
+                &res.oral,
+                &style,
+                view.oral_arms,
+                view.bell[n / 2],
+                &mut self.oral_discs,
+            );
+        } else {
+            self.oral_discs.clear();
+        }
+        for disc in self.discs.iter().chain(&self.oral_discs) {
             let at = out.len();
             out.resize(at + DISC, 0.0);
             write_disc(&mut out[at..], disc);
@@ -317,8 +359,9 @@ fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
     disc.point(cs) + normal * along + sideways * side
 }
 
-/// Position and normal of tentacle vertex `index` of the template (the layout of
-/// `tentacles::write_topology`), as the vertex shader computes them.
+/// Position and normal of vertex `index` of the hanging parts' template (the layout of
+/// `tentacles::write_topology`: the tentacles, then the oral tubes), as the vertex shader
+/// computes them.
 pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let layout = TentacleLayout {
         count: b.count(H_TENTACLES),
@@ -326,6 +369,9 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
         points: b.count(H_POINTS),
     };
     let per = 2 + layout.points * (layout.sides + 1);
+    if index >= layout.count * per {
+        return oral_vertex(b, index - layout.count * per);
+    }
     let (t, r) = (index / per, index % per);
     let last = layout.points - 1;
     let m = if r == 0 {
@@ -354,6 +400,66 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let (sin_phi, cos_phi) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
     let out = cos_phi * n + sin_phi * tangent.cross(n);
     (centre + radius * out, out)
+}
+
+/// Centre of oral tube `t`'s ring `m`, as `oral::centre` places it.
+fn oral_centre(b: Block, layout: &TentacleLayout, style: &OralStyle, t: usize, m: usize) -> Vec3 {
+    let discs = b.ring(b.rings() + 1) + layout.points * DISC;
+    if style.is_manubrium(t) {
+        return b.disc(discs + m * DISC).centre;
+    }
+    let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
+    b.disc(discs + (layout.points + m) * DISC).point((cos, sin))
+}
+
+/// Position and normal of oral tube vertex `index` (counted from the first oral vertex),
+/// as `oral::write_surface` places it.
+fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+    let layout = TentacleLayout {
+        count: b.count(H_ORAL),
+        sides: ORAL_SIDES,
+        points: b.count(H_POINTS),
+    };
+    let style = OralStyle {
+        manubrium: b.0[H_MANUBRIUM] > 0.5,
+        manubrium_radius: b.0[H_MANUBRIUM_RADIUS],
+        stalk: 0.0,
+        arm_width: b.0[H_ARM_WIDTH],
+        frill: b.0[H_ARM_FRILL],
+        waves: b.0[H_ARM_WAVES],
+    };
+    let per = 2 + layout.points * (layout.sides + 1);
+    let (t, r) = (index / per, index % per);
+    let last = layout.points - 1;
+    let m = if r == 0 {
+        0
+    } else if r == per - 1 {
+        last
+    } else {
+        (r - 1) / (layout.sides + 1)
+    };
+    let centre = |m| oral_centre(b, &layout, &style, t, m);
+    let c = centre(m);
+    let tangent =
+        (centre((m + 1).min(last)) - centre(m.saturating_sub(1))).normalize_or(Vec3::NEG_Y);
+    let manubrium = style.is_manubrium(t);
+    if r == 0 {
+        return (c - style.section(manubrium, 0.0).1 * tangent, -tangent);
+    }
+    if r == per - 1 {
+        return (c + style.section(manubrium, 1.0).1 * tangent, tangent);
+    }
+    let (arm, sigma) = if manubrium {
+        (0, 0.0)
+    } else {
+        style.arm_angle(t, &layout)
+    };
+    let (sin, cos) = sigma.sin_cos();
+    let n = tentacles::across(b.disc(H_APERTURE).direction((cos, sin)), tangent);
+    let i = (r - 1) % (layout.sides + 1);
+    let (o, e) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
+    let f = oral::fraction(&layout, m);
+    oral::section_vertex(&style, manubrium, arm, f, c, tangent, n, (e, o))
 }
 
 #[cfg(test)]
@@ -435,7 +541,7 @@ mod tests {
     fn a_block_is_a_few_kilobytes() {
         let res = Resolution::of(&Species::aurelia());
         let bytes = block_len(&res) * 4;
-        assert!(bytes < 2048, "{bytes} bytes");
+        assert!(bytes < 3072, "{bytes} bytes");
         // Against the rebuilt mesh's positions and normals alone.
         let vertices = res.umbrella_vertices() + res.tentacle_vertices();
         assert!(

@@ -36,39 +36,42 @@ impl TentacleLayout {
         self.count * self.per_tentacle()
     }
 
-    fn ring(&self, t: usize, m: usize, i: usize) -> usize {
+    pub(crate) fn ring(&self, t: usize, m: usize, i: usize) -> usize {
         t * self.per_tentacle() + 1 + m * (self.sides + 1) + i
     }
 
-    fn root(&self, t: usize) -> usize {
+    pub(crate) fn root(&self, t: usize) -> usize {
         t * self.per_tentacle()
     }
 
-    fn tip(&self, t: usize) -> usize {
+    pub(crate) fn tip(&self, t: usize) -> usize {
         self.root(t) + self.per_tentacle() - 1
     }
 }
 
-/// Sizes the buffers and writes triangles and UVs (u around the tube, v root to tip).
-pub(crate) fn write_topology(layout: &TentacleLayout, buf: &mut SurfaceBuffers) {
+/// Writes the triangles and UVs (u around the tube, v root to tip) of `layout`'s tubes,
+/// numbering their vertices from `first`, into buffers already sized for them.
+pub(crate) fn write_topology(layout: &TentacleLayout, first: usize, buf: &mut SurfaceBuffers) {
     let l = layout;
-    buf.reset(l.vertex_count());
+    let ring = |t, m, i| first + l.ring(t, m, i);
+    let root = |t| first + l.root(t);
+    let tip = |t| first + l.tip(t);
     for t in 0..l.count {
         for i in 0..l.sides {
-            buf.triangle(l.root(t), l.ring(t, 0, i + 1), l.ring(t, 0, i));
+            buf.triangle(root(t), ring(t, 0, i + 1), ring(t, 0, i));
             for m in 0..l.points - 1 {
-                let (a, b) = (l.ring(t, m, i), l.ring(t, m, i + 1));
-                buf.quad(a, b, l.ring(t, m + 1, i), l.ring(t, m + 1, i + 1));
+                let (a, b) = (ring(t, m, i), ring(t, m, i + 1));
+                buf.quad(a, b, ring(t, m + 1, i), ring(t, m + 1, i + 1));
             }
             let last = l.points - 1;
-            buf.triangle(l.ring(t, last, i), l.ring(t, last, i + 1), l.tip(t));
+            buf.triangle(ring(t, last, i), ring(t, last, i + 1), tip(t));
         }
-        buf.uvs[l.root(t)] = [0.5, 0.0];
-        buf.uvs[l.tip(t)] = [0.5, 1.0];
+        buf.uvs[root(t)] = [0.5, 0.0];
+        buf.uvs[tip(t)] = [0.5, 1.0];
         for m in 0..l.points {
             for i in 0..=l.sides {
                 let uv = [i as f32 / l.sides as f32, m as f32 / (l.points - 1) as f32];
-                buf.uvs[l.ring(t, m, i)] = uv;
+                buf.uvs[ring(t, m, i)] = uv;
             }
         }
     }
@@ -118,7 +121,7 @@ pub fn chain_discs(
             chains[side]
         }
     });
-    let aperture = Disc::through(margin.subumbrella[0], margin.subumbrella[1], Vec2::X);
+    let aperture = super::mesh::aperture_disc(margin);
     out.clear();
     let mut radial = aperture.radial;
     for m in 0..layout.points {

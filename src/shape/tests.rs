@@ -109,6 +109,7 @@ fn each_pair_has_its_own_axis() {
         bell: slice.bell.iter().map(rot).collect(),
         rest_bell: slice.rest_bell.iter().map(rot).collect(),
         tentacles: slice.tentacles.clone().map(|c| c.iter().map(rot).collect()),
+        oral_arms: slice.oral_arms.clone().map(|c| c.iter().map(rot).collect()),
     };
     let a = build(&slice.view(), &sp, 5, 2.0);
     let b = build(&tilted.view(), &sp, 5, 2.0);
@@ -229,6 +230,7 @@ fn degenerate_slices_give_finite_surfaces() {
             bell,
             rest_bell,
             tentacles: [&tentacles[0], &tentacles[1]],
+            oral_arms: [&[], &[]],
         };
         let mesh =
             JellyMesh::from_slice(&view, &sp, 9, 3.0).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -430,7 +432,7 @@ fn tentacles_hang_from_the_aperture() {
     let slice = SliceOutline::contracted(&sp, 25, 10, 0.7);
     let mesh = build(&slice.view(), &sp, 0, 0.0);
     let sides = sp.tentacle_sides as usize;
-    let per = mesh.tentacles.vertex_count() / sp.tentacle_count as usize;
+    let per = Resolution::of(&sp).tentacles.vertex_count() / sp.tentacle_count as usize;
     // Tentacle 0 follows the right chain, tentacle count/2 the left one, ring by ring.
     for (t, chain) in [
         (0, &slice.tentacles[1]),

@@ -29,6 +29,8 @@ pub struct CycleFrame {
     pub bell: Vec<Vec2>,
     /// The two tentacle chains.
     pub tentacles: [Vec<Vec2>; 2],
+    /// The manubrium's and oral arms' two chains.
+    pub oral_arms: [Vec<Vec2>; 2],
     /// The bell's centroid in the slice's domain, m.
     pub centroid: Vec2,
     /// Distance swum along the axis in this step, m.
@@ -129,8 +131,16 @@ impl CycleCache {
 
     /// Heap bytes held, roughly: the stored states dominate.
     pub fn bytes(&self) -> usize {
-        let frame =
-            |f: &CycleFrame| (f.bell.len() + f.tentacles[0].len() + f.tentacles[1].len()) * 8 + 64;
+        let frame = |f: &CycleFrame| {
+            (f.bell.len()
+                + f.tentacles
+                    .iter()
+                    .chain(&f.oral_arms)
+                    .map(Vec::len)
+                    .sum::<usize>())
+                * 8
+                + 64
+        };
         self.frames.iter().map(frame).sum::<usize>()
             + self.states.iter().map(SliceSim::bytes).sum::<usize>()
     }
@@ -145,6 +155,7 @@ impl CycleFrame {
         Self {
             bell: relative(view.bell),
             tentacles: [relative(view.tentacles[0]), relative(view.tentacles[1])],
+            oral_arms: [relative(view.oral_arms[0]), relative(view.oral_arms[1])],
             centroid,
             surge,
         }

@@ -8,6 +8,7 @@ pub mod cycle;
 pub mod fluid;
 pub mod kernel;
 pub mod muscle;
+pub mod oral_arms;
 pub mod pressure;
 mod slice;
 
@@ -31,4 +32,7 @@ pub struct SliceView<'a> {
     /// Left and right tentacle chains; each starts at its margin point (`bell[0]`, resp.
     /// `bell[len-1]`) and hangs away from the bell.
     pub tentacles: [&'a [Vec2]; 2],
+    /// Left and right chains of the manubrium and oral arms ([`oral_arms`]), from beside
+    /// the subumbrellar apex down; empty for a species without them.
+    pub oral_arms: [&'a [Vec2]; 2],
 }

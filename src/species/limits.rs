@@ -115,6 +115,20 @@ pub const LIMITS: &[Limit] = &[
     limit!("tentacle_length", 0.0, 2.0, "m", "with at most ten bell diameters (below): longer chains leave the box"),
     limit!("tentacle_cross_section", 1e-4, 1.0, "", "a fraction of the margin's wall"),
     limit!("tentacle_radius", 1e-5, 0.05, "m", "with at most a twentieth of the diameter (below)"),
+    limit!("manubrium_length", 0.0, 2.0, "m", "with at most two bell diameters (below)"),
+    limit!("manubrium_radius", 1e-5, 0.25, "m", "with at most a quarter of the diameter (below)"),
+    limit!("oral_arm_count", 0.0, 32.0, "", "each arm is a blade of the mesh"),
+    limit!("oral_arm_length", 0.0, 5.0, "m", "with at most five bell diameters (below): longer arms trail out of the slice's box"),
+    limit!("oral_arm_width", 1e-5, 0.5, "m", "with at most half the diameter (below)"),
+    limit!("oral_arm_frill", 0.0, 2.0, "× width", "deeper ruffles fold the blade through itself"),
+    limit!("gonad_count", 0.0, 128.0, "", "more gonads than the pattern's texels blur into a ring"),
+    limit!("gonad_size", 0.0, 1.0, "× span", "a fraction of the subumbrella from apex to margin"),
+    limit!("gonad_color[0]", 0.0, 1.0, "", "linear red"),
+    limit!("gonad_color[1]", 0.0, 1.0, "", "linear green"),
+    limit!("gonad_color[2]", 0.0, 1.0, "", "linear blue"),
+    limit!("gonad_color[3]", 0.0, 1.0, "", "opacity"),
+    limit!("radial_canal_count", 0.0, 256.0, "", "more canals than the pattern's texels blur together"),
+    limit!("canal_width", 0.0, 0.2, "× span", "wider canals cover the bell"),
     limit!("structural_scale", 0.0, 2.0, "× thickness", "larger lobes turn the bell inside out"),
     limit!("structural_frequency", 0.0, 64.0, "lobes", "more lobes than the mesh has segments alias"),
     limit!("compression_scale", 0.0, 1.0, "× thickness", "larger ripples cross the subumbrella"),
@@ -184,6 +198,20 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
         ("tentacle_length", s.tentacle_length as f64),
         ("tentacle_cross_section", s.tentacle_cross_section as f64),
         ("tentacle_radius", s.tentacle_radius as f64),
+        ("manubrium_length", s.manubrium_length as f64),
+        ("manubrium_radius", s.manubrium_radius as f64),
+        ("oral_arm_count", s.oral_arm_count as f64),
+        ("oral_arm_length", s.oral_arm_length as f64),
+        ("oral_arm_width", s.oral_arm_width as f64),
+        ("oral_arm_frill", s.oral_arm_frill as f64),
+        ("gonad_count", s.gonad_count as f64),
+        ("gonad_size", s.gonad_size as f64),
+        ("gonad_color[0]", s.gonad_color[0] as f64),
+        ("gonad_color[1]", s.gonad_color[1] as f64),
+        ("gonad_color[2]", s.gonad_color[2] as f64),
+        ("gonad_color[3]", s.gonad_color[3] as f64),
+        ("radial_canal_count", s.radial_canal_count as f64),
+        ("canal_width", s.canal_width as f64),
         ("structural_scale", s.structural_scale as f64),
         ("structural_frequency", s.structural_frequency as f64),
         ("compression_scale", s.compression_scale as f64),
@@ -207,8 +235,8 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
 }
 
 /// Vertices of the species' mesh: both umbrella surfaces (an apex vertex and `rings`
-/// rings of `segments + 1`) and the tentacles (two caps and `rings / 2 + 1` rings of
-/// `sides + 1` each). `shape::Resolution` builds exactly this (a test holds them equal).
+/// rings of `segments + 1`), the tentacles (two caps and `rings / 2 + 1` rings of
+/// `sides + 1` each) and the oral tubes (the same with [`ORAL_SIDES`]). `shape::Resolution` builds exactly this (a test holds them equal).
 pub fn mesh_vertices(s: &Species) -> usize {
     let (rings, segments) = (s.mesh_rings as usize, s.mesh_segments as usize);
     let umbrella = 2 * (1 + rings * (segments + 1));
@@ -217,7 +245,22 @@ pub fn mesh_vertices(s: &Species) -> usize {
     } else {
         0
     };
-    umbrella + tentacles
+    umbrella + tentacles + oral_tubes(s) * (2 + (rings / 2 + 1) * (ORAL_SIDES + 1))
+}
+
+/// Sides of the manubrium's and the oral arms' tubes: eight, so a blade has two edges.
+pub const ORAL_SIDES: usize = 8;
+
+/// Tubes hanging from the subumbrellar apex: the manubrium (if it has a length) and the
+/// oral arms (if they have one).
+pub fn oral_tubes(s: &Species) -> usize {
+    let manubrium = (s.manubrium_length > 0.0) as usize;
+    let arms = if s.oral_arm_length > 0.0 {
+        s.oral_arm_count as usize
+    } else {
+        0
+    };
+    manubrium + arms
 }
 
 /// Estimated seconds of one core per simulated second: steps per second times the cost
@@ -285,6 +328,39 @@ pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
                 s.tentacle_radius
             ),
         );
+    }
+    for (field, value, most, of_what) in [
+        (
+            "manubrium_length",
+            s.manubrium_length,
+            2.0 * s.diameter,
+            "two diameters",
+        ),
+        (
+            "manubrium_radius",
+            s.manubrium_radius,
+            0.25 * s.diameter,
+            "a quarter of the diameter",
+        ),
+        (
+            "oral_arm_length",
+            s.oral_arm_length,
+            5.0 * s.diameter,
+            "five diameters",
+        ),
+        (
+            "oral_arm_width",
+            s.oral_arm_width,
+            0.5 * s.diameter,
+            "half the diameter",
+        ),
+    ] {
+        if value > most {
+            return joint(
+                field,
+                format!("must be at most {of_what} ({most} m), got {value} m"),
+            );
+        }
     }
     let vertices = mesh_vertices(s);
     if vertices > MAX_MESH_VERTICES {

@@ -90,6 +90,34 @@ pub struct Species {
     /// Rendered tentacle radius, m.
     pub tentacle_radius: f32,
 
+    // --- Anatomy (drawn; carried by the slice's water, never pushing it) ---
+    /// Length of the manubrium, the stalk carrying the mouth from the subumbrellar apex, m
+    /// (0: none).
+    pub manubrium_length: f32,
+    /// Radius of the manubrium, m.
+    pub manubrium_radius: f32,
+    /// Oral arms hanging from the manubrium (Aurelia: 4).
+    pub oral_arm_count: u32,
+    /// Length of an oral arm below the manubrium, m (0: none).
+    pub oral_arm_length: f32,
+    /// Width of an oral arm's blade, m.
+    pub oral_arm_width: f32,
+    /// Frilliness of the arms' margins: the ruffle's depth as a fraction of the blade's
+    /// width (0: smooth blades).
+    pub oral_arm_frill: f32,
+    /// Gonads seen through the bell (Aurelia: 4; 0: none).
+    pub gonad_count: u32,
+    /// The gonads' shape (see [`GonadShape`]).
+    pub gonad_shape: GonadShape,
+    /// Gonad size as a fraction of the subumbrella's span from apex to margin.
+    pub gonad_size: f32,
+    /// Gonad colour, linear RGBA (alpha is its opacity through the bell).
+    pub gonad_color: [f32; 4],
+    /// Radial canals from the stomach to the ring canal along the margin (0: none).
+    pub radial_canal_count: u32,
+    /// Width of the radial and ring canals as a fraction of the subumbrella's span.
+    pub canal_width: f32,
+
     // --- Surface variation (paper section 3.5, Fig. 9) ---
     /// Structural variation amplitude as a fraction of `thickness` (paper: 0.375).
     pub structural_scale: f32,
@@ -170,6 +198,20 @@ impl Species {
             tentacle_length: 0.03,
             tentacle_cross_section: 0.01,
             tentacle_radius: 0.0004,
+            // Four frilly oral arms from a short manubrium, four horseshoe gonads between
+            // them and sixteen radial canals: how a moon jelly is recognised.
+            manubrium_length: 0.003,
+            manubrium_radius: 0.0015,
+            oral_arm_count: 4,
+            oral_arm_length: 0.016,
+            oral_arm_width: 0.003,
+            oral_arm_frill: 0.5,
+            gonad_count: 4,
+            gonad_shape: GonadShape::Horseshoe,
+            gonad_size: 0.3,
+            gonad_color: [0.85, 0.5, 0.95, 0.75],
+            radial_canal_count: 16,
+            canal_width: 0.012,
             // A smooth, taut bell, as in photographs of living medusae: gentle lobes, faint
             // ripples as it contracts, a hint of irregularity. The paper's Fig. 12 values,
             // several times larger, crumple the dome: `with_paper_variations`.
@@ -205,6 +247,19 @@ impl Species {
             tentacle_count: 100,
             tentacle_length: 0.045,
             tentacle_radius: 0.00025,
+            // A short, wide stomach fringed with lips, gonads along its many radial canals.
+            manubrium_length: 0.003,
+            manubrium_radius: 0.004,
+            oral_arm_count: 12,
+            oral_arm_length: 0.004,
+            oral_arm_width: 0.0015,
+            oral_arm_frill: 0.8,
+            gonad_count: 60,
+            gonad_shape: GonadShape::Radial,
+            gonad_size: 0.45,
+            gonad_color: [0.85, 1.0, 0.9, 0.45],
+            radial_canal_count: 60,
+            canal_width: 0.006,
             structural_scale: 0.05,
             structural_frequency: 16.0,
             structural_abs: true,
@@ -232,6 +287,14 @@ impl Species {
             tentacle_count: 4,
             tentacle_length: 0.025,
             tentacle_radius: 0.0003,
+            // A long tubular manubrium hanging out of the bell, four radial canals.
+            manubrium_length: 0.02,
+            manubrium_radius: 0.0008,
+            oral_arm_count: 0,
+            oral_arm_length: 0.0,
+            gonad_count: 0,
+            radial_canal_count: 4,
+            canal_width: 0.025,
             structural_scale: 0.04,
             structural_frequency: 4.0,
             unstructured_scale: 0.15,
@@ -371,6 +434,25 @@ impl Species {
     pub fn step_length(&self) -> f32 {
         self.period() / self.steps_per_cycle() as f32
     }
+}
+
+/// The shape of the gonads, drawn through the bell on the subumbrella between the radial
+/// canals.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+pub enum GonadShape {
+    /// A horseshoe opening towards the centre (Aurelia's four-leaf clover).
+    #[default]
+    Horseshoe,
+    /// An oval.
+    Oval,
+    /// A strip along each radial canal (Aequorea).
+    Radial,
+}
+
+impl GonadShape {
+    /// Every shape, for pickers.
+    pub const ALL: [GonadShape; 3] = [GonadShape::Horseshoe, GonadShape::Oval, GonadShape::Radial];
 }
 
 /// The fluid's advection scheme: a numerical choice, kept with the species because the

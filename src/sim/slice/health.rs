@@ -9,7 +9,7 @@ impl SliceSim {
     /// (subumbrella closed by the aperture chord) neither crosses itself, nor turns inside
     /// out, nor collapses (see [`Outline`](crate::sim::body::Outline)).
     pub(super) fn healthy(&self) -> bool {
-        if !self.body.is_finite() || !self.speed.is_finite() {
+        if !self.body.is_finite() || !self.speed.is_finite() || !self.oral_arms.is_finite() {
             return false;
         }
         let d = self.species.diameter;
@@ -31,6 +31,7 @@ impl SliceSim {
         self.speed = 0.0;
         let origin = Self::rest_origin(&self.species, &self.fluid);
         self.body = Body::new(&self.species, origin, self.fluid.h);
+        self.oral_arms = self.hanging_arms(&self.species);
         self.across += self.drift.x;
         self.frame.position += self.drift.y as f64;
         self.drift = glam::Vec2::ZERO;

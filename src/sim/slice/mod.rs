@@ -12,6 +12,7 @@ use super::clock::FixedClock;
 use super::coupling::Coupling;
 use super::fluid::Fluid;
 use super::muscle::MuscleDrive;
+use super::oral_arms::OralArms;
 use crate::species::{Species, SpeciesError};
 use frame::ComovingFrame;
 use glam::Vec2;
@@ -58,6 +59,8 @@ pub struct SliceSim {
     slip: Vec<Vec2>,
     rest_bell: Vec<Vec2>,
     tentacle_view: [Vec<Vec2>; 2],
+    /// Carried by the water, never pushing it.
+    oral_arms: OralArms,
 }
 
 impl SliceSim {
@@ -77,6 +80,7 @@ impl SliceSim {
         let home = body.bell_centroid();
         let rest_bell = body.bell_points().to_vec();
         let count = body.points.len();
+        let oral_arms = OralArms::new(species, body.bell_points()[body.apex_index()], body.axis());
         let mut sim = Self {
             species: species.clone(),
             fluid,
@@ -101,6 +105,7 @@ impl SliceSim {
             slip: vec![Vec2::ZERO; count],
             rest_bell,
             tentacle_view: [Vec::new(), Vec::new()],
+            oral_arms,
         };
         sim.refresh_view();
         Ok(sim)
@@ -153,7 +158,9 @@ impl SliceSim {
 
     /// Heap bytes held, roughly: the fluid's fields dominate.
     pub fn bytes(&self) -> usize {
-        self.fluid.bytes() + self.body.points.len() * 6 * std::mem::size_of::<Vec2>()
+        self.fluid.bytes()
+            + self.body.points.len() * 6 * std::mem::size_of::<Vec2>()
+            + self.oral_arms.bytes()
     }
 
     /// Fixed steps per contraction cycle for `species` ([`Species::steps_per_cycle`]).
@@ -182,6 +189,12 @@ impl SliceSim {
     /// The slice's fixed step for `species`, s: a whole fraction of the contraction period.
     pub fn step_length(species: &Species) -> f32 {
         species.step_length()
+    }
+
+    /// Oral arms hanging at rest from the bell where it is now.
+    fn hanging_arms(&self, species: &Species) -> OralArms {
+        let apex = self.body.bell_points()[self.body.apex_index()];
+        OralArms::new(species, apex, self.body.axis())
     }
 
     fn refresh_view(&mut self) {
@@ -246,6 +259,7 @@ impl SliceSim {
             bell: self.body.bell_points(),
             rest_bell: &self.rest_bell,
             tentacles: [&self.tentacle_view[0], &self.tentacle_view[1]],
+            oral_arms: [&self.oral_arms.chains[0], &self.oral_arms.chains[1]],
         }
     }
 
@@ -404,10 +418,28 @@ impl SliceSim {
         self.fluid.kernel = species.kernel;
         self.fluid.kernel_stretch = Self::kernel_stretch(species);
         self.drive = MuscleDrive::new(species);
+        if anatomy_changed(species, &self.species) {
+            self.oral_arms = self.hanging_arms(species);
+        }
         self.clock = self
             .clock
             .retimed(species.period(), Self::steps_per_cycle(species));
         self.species = species.clone();
         Ok(())
     }
+}
+
+/// Whether the manubrium or the arms changed shape (they are then hung afresh).
+fn anatomy_changed(a: &Species, b: &Species) -> bool {
+    (
+        a.manubrium_length,
+        a.manubrium_radius,
+        a.oral_arm_count,
+        a.oral_arm_length,
+    ) != (
+        b.manubrium_length,
+        b.manubrium_radius,
+        b.oral_arm_count,
+        b.oral_arm_length,
+    )
 }

@@ -92,6 +92,15 @@ impl SliceSim {
             self.body.symmetrise(self.fluid.axis());
         }
         self.body.keep_tentacles_outside();
+        let bell = self.body.bell_points();
+        let mirror = self.mirror_symmetry.then(|| self.fluid.axis());
+        self.oral_arms.step(
+            &self.fluid,
+            bell[bell.len() / 2],
+            self.body.axis(),
+            dt,
+            mirror,
+        );
 
         if !self.healthy() {
             self.recover();
@@ -129,6 +138,7 @@ impl SliceSim {
             self.fluid.shift_across(dx);
             let shift = Vec2::X * dx as f32 * h;
             self.body.points.iter_mut().for_each(|p| *p -= shift);
+            self.oral_arms.shift(-shift);
             self.across += shift.x;
         }
     }
