@@ -3,7 +3,7 @@
 //! and cannot leave it; limits that join fields (proportions, budgets) are validation's,
 //! shown as an error above the sliders.
 
-use crate::species::{Advection, Kernel, Species, limits};
+use crate::species::{Advection, GonadShape, Kernel, Species, limits};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -118,6 +118,21 @@ pub const SECTIONS: &[Section] = &[
         ],
     },
     Section {
+        title: "Anatomy",
+        params: &[
+            param!(manubrium_length, "manubrium length", " mm", MM, false, Real),
+            param!(manubrium_radius, "manubrium radius", " mm", MM, true, Real),
+            param!(oral_arm_count, "oral arms", "", 1.0, false, Count),
+            param!(oral_arm_length, "arm length", " mm", MM, false, Real),
+            param!(oral_arm_width, "arm width", " mm", MM, true, Real),
+            param!(oral_arm_frill, "arm frill", "", 1.0, false, Real),
+            param!(gonad_count, "gonads", "", 1.0, false, Count),
+            param!(gonad_size, "gonad size", "", 1.0, false, Real),
+            param!(radial_canal_count, "radial canals", "", 1.0, false, Count),
+            param!(canal_width, "canal width", "", 1.0, false, Real),
+        ],
+    },
+    Section {
         title: "Surface variation",
         params: &[
             param!(structural_scale, "structural scale", "", 1.0, false, Real),
@@ -160,6 +175,8 @@ pub const OTHER_FIELDS: &[&str] = &[
     "advection",
     "kernel",
     "structural_abs",
+    "gonad_shape",
+    "gonad_color",
     "bell_color",
     "glow_color",
 ];
@@ -212,6 +229,14 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= ui.checkbox(&mut species.structural_abs, "").changed();
                                 ui.end_row();
                             }
+                            "Anatomy" => {
+                                changed |= gonad_shape(ui, &mut species.gonad_shape);
+                                ui.label("gonad colour").on_hover_text("gonad_color");
+                                changed |= ui
+                                    .color_edit_button_rgba_unmultiplied(&mut species.gonad_color)
+                                    .changed();
+                                ui.end_row();
+                            }
                             "Water" => {
                                 changed |= advection(ui, &mut species.advection);
                                 changed |= kernel(ui, &mut species.kernel);
@@ -250,6 +275,20 @@ fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
         });
     ui.end_row();
     *advection != before
+}
+
+fn gonad_shape(ui: &mut egui::Ui, shape: &mut GonadShape) -> bool {
+    ui.label("gonad shape").on_hover_text("gonad_shape");
+    let before = *shape;
+    egui::ComboBox::from_id_salt("gonad_shape")
+        .selected_text(format!("{shape:?}"))
+        .show_ui(ui, |ui| {
+            for s in GonadShape::ALL {
+                ui.selectable_value(shape, s, format!("{s:?}"));
+            }
+        });
+    ui.end_row();
+    *shape != before
 }
 
 fn kernel(ui: &mut egui::Ui, kernel: &mut Kernel) -> bool {

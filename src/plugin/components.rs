@@ -364,6 +364,7 @@ impl Pose {
 pub(crate) struct Snapshot {
     pub bell: Vec<Vec2>,
     pub tentacles: [Vec<Vec2>; 2],
+    pub oral_arms: [Vec<Vec2>; 2],
     pub centroid: Vec2,
     pub swim: f32,
     /// Slice time of the state, s.
@@ -379,7 +380,13 @@ impl Snapshot {
         self.centroid = c;
         self.bell.clear();
         self.bell.extend(view.bell.iter().map(|p| *p - c));
-        for (out, chain) in self.tentacles.iter_mut().zip(view.tentacles) {
+        let chains = view.tentacles.into_iter().chain(view.oral_arms);
+        for (out, chain) in self
+            .tentacles
+            .iter_mut()
+            .chain(&mut self.oral_arms)
+            .zip(chains)
+        {
             out.clear();
             out.extend(chain.iter().map(|p| *p - c));
         }
@@ -404,6 +411,11 @@ impl Snapshot {
                 &a.tentacles[side],
                 &b.tentacles[side],
             );
+            lerp(
+                &mut self.oral_arms[side],
+                &a.oral_arms[side],
+                &b.oral_arms[side],
+            );
         }
         self.centroid = Vec2::ZERO;
         self.swim = a.swim + t * (b.swim - a.swim);
@@ -414,7 +426,13 @@ impl Snapshot {
     /// The recorded cycle's frame, at slice time `time` and swim distance `swim`.
     pub fn copy_frame(&mut self, frame: &CycleFrame, time: f64, swim: f32) {
         self.bell.clone_from(&frame.bell);
-        for (out, chain) in self.tentacles.iter_mut().zip(&frame.tentacles) {
+        let chains = frame.tentacles.iter().chain(&frame.oral_arms);
+        for (out, chain) in self
+            .tentacles
+            .iter_mut()
+            .chain(&mut self.oral_arms)
+            .zip(chains)
+        {
             out.clone_from(chain);
         }
         self.centroid = frame.centroid;
@@ -432,6 +450,7 @@ impl Snapshot {
         add(&mut self.bell, &other.bell);
         for side in 0..2 {
             add(&mut self.tentacles[side], &other.tentacles[side]);
+            add(&mut self.oral_arms[side], &other.oral_arms[side]);
         }
     }
 
@@ -440,6 +459,7 @@ impl Snapshot {
             bell: &self.bell,
             rest_bell,
             tentacles: [&self.tentacles[0], &self.tentacles[1]],
+            oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
         }
     }
 }

@@ -18,12 +18,16 @@ const VIEW_MARGIN: f32 = 1.25;
 
 /// The mesh's bounds in its local frame (metres, origin at the bell's centroid, y along
 /// the axis): every slice point swept around the axis, plus the wall, the surface
-/// variation and the tentacles' radius.
+/// variation and the tentacles' radius or the oral arms' width.
 pub(crate) fn slice_bounds(shape: &Snapshot, species: &Species) -> Aabb {
     let pad = species.thickness
         * (1.0 + species.structural_scale + species.compression_scale + species.unstructured_scale)
-        + species.tentacle_radius;
-    let points = shape.bell.iter().chain(shape.tentacles.iter().flatten());
+        + species.tentacle_radius.max(
+            species.manubrium_radius * 1.5
+                + species.oral_arm_width * (0.5 + species.oral_arm_frill),
+        );
+    let chains = shape.tentacles.iter().chain(&shape.oral_arms);
+    let points = shape.bell.iter().chain(chains.flatten());
     let (mut radius, mut low, mut high) = (0.0f32, f32::MAX, f32::MIN);
     for p in points {
         radius = radius.max(p.x.abs());

@@ -47,7 +47,7 @@ pub struct JellyfishGeometry<'w, 's> {
 pub struct WorldSurfaces {
     /// The umbrella, world space.
     pub umbrella: SurfaceBuffers,
-    /// Empty for a species without tentacles.
+    /// The tentacles, then the manubrium and the oral arms; empty for a species without any.
     pub tentacles: SurfaceBuffers,
 }
 

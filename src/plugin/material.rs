@@ -8,6 +8,7 @@
 
 use super::JellyfishSystems;
 use super::components::{Jellyfish, JellyfishMeshes, JellyfishTentacles};
+use super::pattern::{BellPatterns, PLAIN_GLOW, PatternImages};
 use super::surface::SurfacePath;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
@@ -53,13 +54,21 @@ pub(super) fn plugin(app: &mut App) {
 
 /// The bell: alpha-blended and double-sided (the subumbrella shows through), a high
 /// reflectance and a clear coat so grazing angles brighten (a fresnel rim), and the
-/// species' glow as emission.
-pub fn bell_material(species: &Species) -> StandardMaterial {
+/// species' glow as emission. With its `pattern` the colour, opacity and glow come from
+/// the canal and gonad images; without, the bell is plain.
+pub fn bell_material(species: &Species, pattern: Option<&PatternImages>) -> StandardMaterial {
     let [r, g, b, a] = species.bell_color;
     let [er, eg, eb] = species.glow_color;
+    let glow = LinearRgba::rgb(er, eg, eb) * species.glow;
+    let (base_color, emissive) = match pattern {
+        Some(_) => (Color::WHITE, glow * (1.0 / PLAIN_GLOW)),
+        None => (Color::linear_rgba(r, g, b, a), glow),
+    };
     StandardMaterial {
-        base_color: Color::linear_rgba(r, g, b, a),
-        emissive: LinearRgba::rgb(er, eg, eb) * species.glow,
+        base_color,
+        base_color_texture: pattern.map(|p| p.color.clone()),
+        emissive,
+        emissive_texture: pattern.map(|p| p.glow.clone()),
         alpha_mode: AlphaMode::Blend,
         double_sided: true,
         cull_mode: None,
@@ -73,7 +82,7 @@ pub fn bell_material(species: &Species) -> StandardMaterial {
 
 /// Tentacles: thin, so denser and brighter than the bell to stay visible.
 pub fn tentacle_material(species: &Species) -> StandardMaterial {
-    let mut m = bell_material(species);
+    let mut m = bell_material(species, None);
     m.base_color
         .set_alpha((species.bell_color[3] * 1.8).min(1.0));
     m.emissive *= 1.5;
@@ -85,6 +94,7 @@ fn update_materials(
     species: Res<Assets<Species>>,
     mut cache: ResMut<JellyfishMaterials>,
     mut materials: ResMut<Assets<StandardMaterial>>,
+    patterns: Res<BellPatterns>,
 ) {
     for event in events.read() {
         match event {
@@ -96,7 +106,7 @@ fn update_materials(
                     continue;
                 }
                 if let Some(mut bell) = materials.get_mut(&m.bell) {
-                    *bell = bell_material(s);
+                    *bell = bell_material(s, patterns.by_species.get(id));
                 }
                 if let Some(mut tentacles) = materials.get_mut(&m.tentacles) {
                     *tentacles = tentacle_material(s);
@@ -121,6 +131,8 @@ fn assign_materials(
     species: Res<Assets<Species>>,
     mut cache: ResMut<JellyfishMaterials>,
     mut materials: ResMut<Assets<StandardMaterial>>,
+    mut patterns: ResMut<BellPatterns>,
+    mut images: Option<ResMut<Assets<Image>>>,
 ) {
     let mut get = |handle: &Handle<Species>| -> Option<SpeciesMaterials> {
         let s = species.get(handle)?;
@@ -129,7 +141,13 @@ fn assign_materials(
                 .by_species
                 .entry(handle.id())
                 .or_insert_with(|| SpeciesMaterials {
-                    bell: materials.add(bell_material(s)),
+                    bell: materials.add(bell_material(
+                        s,
+                        images
+                            .as_deref_mut()
+                            .map(|images| patterns.get_or_make(handle.id(), s, images))
+                            .as_ref(),
+                    )),
                     tentacles: materials.add(tentacle_material(s)),
                 })
                 .clone(),

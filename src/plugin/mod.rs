@@ -32,6 +32,7 @@ mod geometry;
 mod material;
 mod meshing;
 mod motion;
+mod pattern;
 mod prepare;
 mod settings;
 mod steering;
@@ -49,6 +50,7 @@ pub use diagnostics::JellyfishDiagnostics;
 pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
+pub use pattern::{BellPatterns, PatternImages, pattern_images};
 pub use prepare::NEW_SLICES_PER_FRAME;
 pub use settings::{JellyfishSettings, SurfaceMode};
 pub use steering::{Steering, SteeringTarget};
@@ -110,6 +112,7 @@ impl Plugin for JellyfishPlugin {
                 asset::plugin,
                 diagnostics::plugin,
                 material::plugin,
+                pattern::plugin,
                 prepare::plugin,
                 detail::plugin,
                 step::plugin,

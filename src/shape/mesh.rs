@@ -64,7 +64,7 @@ impl Resolution {
             oral: TentacleLayout {
                 count: oral,
                 sides: ORAL_SIDES,
-                points: rings / 2 + 1,
+                points: rings + 1,
             },
         }
     }

@@ -8,6 +8,7 @@
 //! - [`umbrella`], [`tentacles`], [`oral`] (manubrium and oral arms): discs joined into
 //!   closed surfaces in [`buffers`];
 //!   the umbrella's normals come from its ring grid (`normals.rs`).
+//! - [`pattern`]: the canals and gonads painted on the subumbrella.
 //! - [`variation`]: structural, compression and unstructured variation (Fig. 9); the noise
 //!   is cached per vertex in [`noise_field`].
 //! - [`input`]: what a slice must satisfy; [`outline`]: a hand-made slice for tests,
@@ -22,6 +23,7 @@ mod normals;
 pub mod oral;
 pub mod outline;
 pub mod packed;
+pub mod pattern;
 pub mod perlin;
 pub mod profile;
 pub mod spline;

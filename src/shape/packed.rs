@@ -77,8 +77,10 @@ pub const H_ARM_WIDTH: usize = 28;
 pub const H_ARM_FRILL: usize = 29;
 /// Ruffle waves along an arm.
 pub const H_ARM_WAVES: usize = 30;
+/// Rings along each oral tube.
+pub const H_ORAL_POINTS: usize = 31;
 /// Header length.
-pub const HEADER: usize = 31;
+pub const HEADER: usize = 32;
 /// Values per disc: centre (x, y), radius, radial (x, y).
 pub const DISC: usize = 5;
 /// Values per ring: subumbrella disc, exumbrella disc, normals (left, right), latitude,
@@ -155,6 +157,7 @@ impl ShapePacker {
         header[H_TENTACLE_RADIUS] = species.tentacle_radius;
         let style = OralStyle::of(species);
         header[H_ORAL] = bits(res.oral.count);
+        header[H_ORAL_POINTS] = bits(res.oral.points);
         header[H_MANUBRIUM] = if style.manubrium { 1.0 } else { 0.0 };
         header[H_MANUBRIUM_RADIUS] = style.manubrium_radius;
         header[H_ARM_WIDTH] = style.arm_width;
@@ -404,7 +407,7 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
 
 /// Centre of oral tube `t`'s ring `m`, as `oral::centre` places it.
 fn oral_centre(b: Block, layout: &TentacleLayout, style: &OralStyle, t: usize, m: usize) -> Vec3 {
-    let discs = b.ring(b.rings() + 1) + layout.points * DISC;
+    let discs = b.ring(b.rings() + 1) + b.count(H_POINTS) * DISC;
     if style.is_manubrium(t) {
         return b.disc(discs + m * DISC).centre;
     }
@@ -418,7 +421,7 @@ fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let layout = TentacleLayout {
         count: b.count(H_ORAL),
         sides: ORAL_SIDES,
-        points: b.count(H_POINTS),
+        points: b.count(H_ORAL_POINTS),
     };
     let style = OralStyle {
         manubrium: b.0[H_MANUBRIUM] > 0.5,

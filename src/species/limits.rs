@@ -236,7 +236,7 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
 
 /// Vertices of the species' mesh: both umbrella surfaces (an apex vertex and `rings`
 /// rings of `segments + 1`), the tentacles (two caps and `rings / 2 + 1` rings of
-/// `sides + 1` each) and the oral tubes (the same with [`ORAL_SIDES`]). `shape::Resolution` builds exactly this (a test holds them equal).
+/// `sides + 1` each) and the oral tubes (`rings + 1` rings of [`ORAL_SIDES`]` + 1`). `shape::Resolution` builds exactly this (a test holds them equal).
 pub fn mesh_vertices(s: &Species) -> usize {
     let (rings, segments) = (s.mesh_rings as usize, s.mesh_segments as usize);
     let umbrella = 2 * (1 + rings * (segments + 1));
@@ -245,7 +245,7 @@ pub fn mesh_vertices(s: &Species) -> usize {
     } else {
         0
     };
-    umbrella + tentacles + oral_tubes(s) * (2 + (rings / 2 + 1) * (ORAL_SIDES + 1))
+    umbrella + tentacles + oral_tubes(s) * (2 + (rings + 1) * (ORAL_SIDES + 1))
 }
 
 /// Sides of the manubrium's and the oral arms' tubes: eight, so a blade has two edges.

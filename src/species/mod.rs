@@ -203,15 +203,15 @@ impl Species {
             manubrium_length: 0.003,
             manubrium_radius: 0.0015,
             oral_arm_count: 4,
-            oral_arm_length: 0.016,
+            oral_arm_length: 0.03,
             oral_arm_width: 0.003,
             oral_arm_frill: 0.5,
             gonad_count: 4,
             gonad_shape: GonadShape::Horseshoe,
             gonad_size: 0.3,
-            gonad_color: [0.85, 0.5, 0.95, 0.75],
+            gonad_color: [0.85, 0.45, 0.95, 0.9],
             radial_canal_count: 16,
-            canal_width: 0.012,
+            canal_width: 0.008,
             // A smooth, taut bell, as in photographs of living medusae: gentle lobes, faint
             // ripples as it contracts, a hint of irregularity. The paper's Fig. 12 values,
             // several times larger, crumple the dome: `with_paper_variations`.

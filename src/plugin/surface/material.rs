@@ -6,6 +6,7 @@ use super::upload::ShapeBuffers;
 use crate::plugin::JellyfishSystems;
 use crate::plugin::components::{Jellyfish, JellyfishMeshes, JellyfishTentacles};
 use crate::plugin::material::{bell_material, tentacle_material};
+use crate::plugin::pattern::BellPatterns;
 use crate::species::Species;
 use bevy::pbr::{ExtendedMaterial, MaterialExtension};
 use bevy::platform::collections::HashMap;
@@ -79,6 +80,7 @@ fn update(
     species: Res<Assets<Species>>,
     mut cache: ResMut<SurfaceMaterials>,
     mut materials: ResMut<Assets<SurfaceMaterial>>,
+    patterns: Res<BellPatterns>,
 ) {
     for event in events.read() {
         match event {
@@ -89,7 +91,8 @@ fn update(
                 if s.validate().is_err() {
                     continue;
                 }
-                for (handle, base) in pair.iter().zip([bell_material(s), tentacle_material(s)]) {
+                let bell = bell_material(s, patterns.by_species.get(id));
+                for (handle, base) in pair.iter().zip([bell, tentacle_material(s)]) {
                     if let Some(mut m) = materials.get_mut(handle) {
                         m.base = base;
                     }
@@ -116,6 +119,8 @@ fn assign(
     buffers: Option<Res<ShapeBuffers>>,
     mut cache: ResMut<SurfaceMaterials>,
     mut materials: ResMut<Assets<SurfaceMaterial>>,
+    mut patterns: ResMut<BellPatterns>,
+    mut images: Option<ResMut<Assets<Image>>>,
 ) {
     let Some(buffers) = buffers else {
         return;
@@ -130,7 +135,10 @@ fn assign(
                 .by_species
                 .entry(jelly.species.id())
                 .or_insert_with(|| {
-                    [bell_material(s), tentacle_material(s)]
+                    let pattern = images
+                        .as_deref_mut()
+                        .map(|images| patterns.get_or_make(jelly.species.id(), s, images));
+                    [bell_material(s, pattern.as_ref()), tentacle_material(s)]
                         .map(|base| materials.add(surface(base, &buffers)))
                 })
                 .clone(),

@@ -40,11 +40,20 @@ const H_TAU: u32 = 14u;
 const H_TENTACLE_RADIUS: u32 = 15u;
 const H_APERTURE: u32 = 16u;
 const H_MARGIN_NORMALS: u32 = 21u;
-const HEADER: u32 = 25u;
+const H_ORAL: u32 = 25u;
+const H_MANUBRIUM: u32 = 26u;
+const H_MANUBRIUM_RADIUS: u32 = 27u;
+const H_ARM_WIDTH: u32 = 28u;
+const H_ARM_FRILL: u32 = 29u;
+const H_ARM_WAVES: u32 = 30u;
+const H_ORAL_POINTS: u32 = 31u;
+const HEADER: u32 = 32u;
 const DISC: u32 = 5u;
 const RING: u32 = 16u;
 // tentacles::SIDEWAYS and variation::APEX_FADE.
 const SIDEWAYS: f32 = 7.3;
+// species::limits::ORAL_SIDES.
+const ORAL_SIDES: u32 = 8u;
 const APEX_FADE: f32 = 0.25;
 const TAU: f32 = 6.28318530717958647692;
 
@@ -325,11 +334,105 @@ fn across(outward: vec3<f32>, tangent: vec3<f32>) -> vec3<f32> {
     return normalize(cross(tangent, other));
 }
 
+// ---- shape::oral (the manubrium and the oral arms, after the tentacles) ----
+
+fn has_manubrium(base: u32) -> bool {
+    return shapes[base + H_MANUBRIUM] > 0.5;
+}
+
+fn is_manubrium(base: u32, t: u32) -> bool {
+    return has_manubrium(base) && t == 0u;
+}
+
+// OralStyle::arm_angle: (arm index, σ).
+fn arm_angle(base: u32, t: u32) -> vec2<f32> {
+    var first = 0u;
+    if has_manubrium(base) {
+        first = 1u;
+    }
+    let a = t - first;
+    let arms = max(count(base, H_ORAL) - first, 1u);
+    return vec2(f32(a), TAU * f32(a) / f32(arms));
+}
+
+// OralStyle::section: (half-width, half-thickness).
+fn oral_section(base: u32, manubrium: bool, f: f32) -> vec2<f32> {
+    if manubrium {
+        let r = shapes[base + H_MANUBRIUM_RADIUS] * (1.0 + 0.5 * f * f);
+        return vec2(r, r);
+    }
+    let x = clamp(f / 0.25, 0.0, 1.0);
+    let grow = x * x * (3.0 - 2.0 * x);
+    let half = 0.5 * shapes[base + H_ARM_WIDTH] * (0.4 + 0.6 * grow) * (1.0 - 0.6 * f * f);
+    return vec2(half, 0.3 * half);
+}
+
+fn oral_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
+    let points = count(base, H_ORAL_POINTS);
+    let discs = ring_at(base, count(base, H_RINGS) + 1u) + count(base, H_POINTS) * DISC;
+    if is_manubrium(base, t) {
+        return read_disc(discs + m * DISC).centre;
+    }
+    let sigma = arm_angle(base, t).y;
+    return disc_point(read_disc(discs + (points + m) * DISC), vec2(cos(sigma), sin(sigma)));
+}
+
+fn oral_vertex(base: u32, index: u32) -> Surface {
+    let points = count(base, H_ORAL_POINTS);
+    let per = 2u + points * (ORAL_SIDES + 1u);
+    let t = index / per;
+    let r = index % per;
+    let last = points - 1u;
+    var m = 0u;
+    if r == per - 1u {
+        m = last;
+    } else if r > 0u {
+        m = (r - 1u) / (ORAL_SIDES + 1u);
+    }
+    let c = oral_centre(base, t, m);
+    let tangent = normalize_or(
+        oral_centre(base, t, min(m + 1u, last)) - oral_centre(base, t, max(m, 1u) - 1u),
+        vec3(0.0, -1.0, 0.0),
+    );
+    let manubrium = is_manubrium(base, t);
+    if r == 0u {
+        return Surface(c - oral_section(base, manubrium, 0.0).y * tangent, -tangent);
+    }
+    if r == per - 1u {
+        return Surface(c + oral_section(base, manubrium, 1.0).y * tangent, tangent);
+    }
+    var arm = vec2(0.0, 0.0);
+    if !manubrium {
+        arm = arm_angle(base, t);
+    }
+    let outward = disc_direction(read_disc(base + H_APERTURE), vec2(cos(arm.y), sin(arm.y)));
+    let n = across(outward, tangent);
+    let b = cross(tangent, n);
+    let i = (r - 1u) % (ORAL_SIDES + 1u);
+    let phi = TAU * f32(i % ORAL_SIDES) / f32(ORAL_SIDES);
+    let e = cos(phi);
+    let o = sin(phi);
+    let f = f32(m) / f32(last);
+    let section = oral_section(base, manubrium, f);
+    var ruffle = 0.0;
+    if !manubrium {
+        ruffle = shapes[base + H_ARM_FRILL] * 2.0 * section.x * e * e
+            * sin(TAU * shapes[base + H_ARM_WAVES] * f + 1.7 * arm.x);
+    }
+    let position = c + section.x * e * n + (section.y * o + ruffle) * b;
+    let normal = normalize_or(section.y * e * n + section.x * o * b, n);
+    return Surface(position, normal);
+}
+
+// The tentacles, then the oral tubes.
 fn tentacle_vertex(base: u32, index: u32) -> Surface {
     let count_t = count(base, H_TENTACLES);
     let sides = count(base, H_SIDES);
     let points = count(base, H_POINTS);
     let per = 2u + points * (sides + 1u);
+    if index >= count_t * per {
+        return oral_vertex(base, index - count_t * per);
+    }
     let t = index / per;
     let r = index % per;
     let last = points - 1u;
