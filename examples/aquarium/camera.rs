@@ -4,11 +4,13 @@
 use crate::screenshot::OffscreenTarget;
 use crate::tank::{SURFACE, WATER};
 use bevy::camera::Hdr;
+use bevy::core_pipeline::oit::OrderIndependentTransparencySettings;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::pbr::{DistanceFog, FogFalloff};
 use bevy::post_process::bloom::Bloom;
 use bevy::prelude::*;
+use bevy::render::view::Msaa;
 
 #[derive(Component, Debug)]
 pub struct Orbit {
@@ -52,7 +54,15 @@ pub fn home() -> Orbit {
     }
 }
 
-fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {
+/// Present: the camera draws translucent surfaces order-independently (`--oit`).
+#[derive(Resource)]
+pub struct OrderIndependent;
+
+fn spawn(
+    mut commands: Commands,
+    offscreen: Option<Res<OffscreenTarget>>,
+    oit: Option<Res<OrderIndependent>>,
+) {
     let orbit = home();
     let mut camera = commands.spawn((
         Camera3d::default(),
@@ -70,6 +80,10 @@ fn spawn(mut commands: Commands, offscreen: Option<Res<OffscreenTarget>>) {
     ));
     if let Some(offscreen) = offscreen {
         camera.insert(offscreen.0.clone());
+    }
+    if oit.is_some() {
+        // Bevy's OIT does not combine with MSAA.
+        camera.insert((OrderIndependentTransparencySettings::default(), Msaa::Off));
     }
 }
 

@@ -1,6 +1,10 @@
 //! The aquarium: schools of three species of jellyfish in a lit tank.
 //!
-//! `cargo run --release --example aquarium -- [--count N] [--seed S]`
+//! `cargo run --release --example aquarium -- [--count N] [--seed S] [--oit]`
+//!
+//! `--oit` draws the translucent bells with Bevy's order-independent transparency
+//! (MSAA off): overlapping bells blend in the right order wherever they cross, at some
+//! cost in GPU memory and time; without it they are sorted by their origins.
 //!
 //! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water. With the `editor` feature (on by
 //! default) panels edit each species live, change the school size and show the frame
@@ -58,6 +62,8 @@ struct Args {
     surfaces: SurfaceMode,
     /// Levels of detail: how many jellyfish are near and mid.
     detail: DetailLevels,
+    /// Order-independent transparency on the camera.
+    oit: bool,
 }
 
 impl Args {
@@ -76,6 +82,7 @@ impl Args {
             size: (1280, 720),
             surfaces: SurfaceMode::Auto,
             detail: DetailLevels::default(),
+            oit: false,
         };
         let mut it = std::env::args().skip(1);
         while let Some(flag) = it.next() {
@@ -93,6 +100,7 @@ impl Args {
                 "--screenshot" => args.screenshot = Some(value()?.into()),
                 "--bench" => args.bench = true,
                 "--stir" => args.stir = true,
+                "--oit" => args.oit = true,
                 "--promote-at" => {
                     let v = value()?;
                     args.promote_at = Some(v.parse().map_err(|_| bad(&v))?);
@@ -136,7 +144,7 @@ impl Args {
                 _ => {
                     return Err(format!(
                         "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--surfaces auto|templates|cpu] [--near N] [--mid N] [--promote-at FRAME] \
+                         [--oit] [--surfaces auto|templates|cpu] [--near N] [--mid N] [--promote-at FRAME] \
                          [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
                          [--bench [--frames 600] [--fps 60]]"
                     ));
@@ -209,6 +217,9 @@ fn main() -> ExitCode {
             detail: args.detail.clone(),
         },
     ));
+    if args.oit {
+        app.insert_resource(camera::OrderIndependent);
+    }
     #[cfg(feature = "editor")]
     app.add_plugins(ui::plugin);
     app.run();
@@ -233,7 +244,7 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
     let school = args.school;
     let frames_to_render = args.frames.unwrap_or(120);
     let (stir, surfaces, detail) = (args.stir, args.surfaces, args.detail.clone());
-    let promote_at = args.promote_at;
+    let (promote_at, oit) = (args.promote_at, args.oit);
     let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
         app.add_plugins(AquariumPlugin {
             school,
@@ -242,6 +253,9 @@ fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
         });
         if stir {
             app.insert_resource(water::ScriptedStir::across_the_middle());
+        }
+        if oit {
+            app.insert_resource(camera::OrderIndependent);
         }
         if let Some(frame) = promote_at {
             app.add_systems(First, promote_all_at(frame));

@@ -508,6 +508,8 @@ pub struct JellyfishMeshes {
     pub tentacles: Option<Handle<Mesh>>,
     /// The child entity drawing the tentacles.
     pub tentacle_entity: Option<Entity>,
+    /// The child entity drawing the umbrella's glow layer ([`JellyfishGlow`]).
+    pub glow_entity: Option<Entity>,
     /// How it is drawn, once set up.
     pub(crate) path: Option<SurfacePath>,
     /// CPU meshes: the buffers the assets are rebuilt from.
@@ -547,3 +549,10 @@ impl JellyfishMeshes {
 #[derive(Component, Clone, Copy, Debug, Default, Reflect)]
 #[reflect(Component)]
 pub struct JellyfishTentacles;
+
+/// Marks the child entity that draws the umbrella a second time, additively: the glow
+/// layer (see [`glow_material`](crate::plugin::glow_material)). It shares the umbrella's
+/// mesh, so it costs a draw, not a mesh.
+#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct JellyfishGlow;

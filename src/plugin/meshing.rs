@@ -3,7 +3,7 @@
 //! [`culling`](super::culling)).
 
 use super::JellyfishSystems;
-use super::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
+use super::components::{JellyfishGlow, JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
 use super::culling::{active_frusta, seen, slice_bounds};
 use super::diagnostics::JellyfishTimings;
 use super::settings::JellyfishSettings;
@@ -89,7 +89,7 @@ fn build_buffers(
 fn write_meshes(
     mut commands: Commands,
     mut jellyfish: Query<(Entity, &mut JellyfishMeshes, Option<&mut Aabb>)>,
-    mut tentacle_bounds: Query<&mut Aabb, (With<JellyfishTentacles>, Without<JellyfishMeshes>)>,
+    mut child_bounds: Query<&mut Aabb, (ChildPart, Without<JellyfishMeshes>)>,
     mut assets: ResMut<Assets<Mesh>>,
     timings: Res<JellyfishTimings>,
 ) {
@@ -105,10 +105,13 @@ fn write_meshes(
                 commands.entity(entity).insert((bounds, NoAutoAabb));
             }
         }
-        if let Some(child) = meshes.tentacle_entity
-            && let Ok(mut aabb) = tentacle_bounds.get_mut(child)
+        for child in [meshes.tentacle_entity, meshes.glow_entity]
+            .into_iter()
+            .flatten()
         {
-            *aabb = bounds;
+            if let Ok(mut aabb) = child_bounds.get_mut(child) {
+                *aabb = bounds;
+            }
         }
     });
     for (entity, mut meshes, _) in &mut jellyfish {
@@ -130,6 +133,10 @@ fn write_meshes(
                 timings.add_mesh_bytes(bytes(umbrella));
                 let handle = assets.add(new_mesh(umbrella, RenderAssetUsages::default()));
                 commands.entity(entity).insert(Mesh3d(handle.clone()));
+                let glow = commands
+                    .spawn(glow_layer(entity, Mesh3d(handle.clone()), meshes.bounds))
+                    .id();
+                meshes.glow_entity = Some(glow);
                 meshes.umbrella = Some(handle);
             }
             None => {}
@@ -170,6 +177,21 @@ fn write_meshes(
         }
     }
     timings.add_meshing(start.elapsed());
+}
+
+/// A jellyfish's part drawn by a child entity: its tentacles or its glow layer.
+type ChildPart = Or<(With<JellyfishTentacles>, With<JellyfishGlow>)>;
+
+/// The glow layer's child: the umbrella's mesh again, bounded like the umbrella.
+pub(crate) fn glow_layer(parent: Entity, mesh: Mesh3d, bounds: Option<Aabb>) -> impl Bundle {
+    (
+        JellyfishGlow,
+        mesh,
+        Transform::default(),
+        bounds.unwrap_or_default(),
+        NoAutoAabb,
+        ChildOf(parent),
+    )
 }
 
 pub(crate) fn new_mesh(b: &mut SurfaceBuffers, usage: RenderAssetUsages) -> Mesh {

@@ -43,13 +43,17 @@ mod water;
 
 pub use asset::{SpeciesLoader, SpeciesRejected};
 pub use components::{
-    Jellyfish, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting, SwimMotion,
+    Jellyfish, JellyfishGlow, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting,
+    SwimMotion,
 };
 pub use detail::{CycleCaches, DetailLevels, Tier, tier_species};
 pub use diagnostics::JellyfishDiagnostics;
 pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
-pub use material::{JellyfishMaterials, SpeciesMaterials, bell_material, tentacle_material};
+pub use material::{
+    GLOW_RADIANCE, JellyfishMaterials, SpeciesMaterials, bell_material, glow_material,
+    tentacle_material,
+};
 pub use pattern::{BellPatterns, PatternImages, pattern_images};
 pub use prepare::NEW_SLICES_PER_FRAME;
 pub use settings::{JellyfishSettings, SurfaceMode};
@@ -99,6 +103,7 @@ impl Plugin for JellyfishPlugin {
             .register_type::<Resting>()
             .register_type::<JellyfishSlice>()
             .register_type::<JellyfishTentacles>()
+            .register_type::<JellyfishGlow>()
             .register_type::<SwimMotion>()
             .register_type::<AmbientWater>()
             .register_type::<TankWater>()

@@ -23,7 +23,7 @@ pub struct Resolution {
     pub segments: usize,
     /// How many tentacles and how finely each is drawn.
     pub tentacles: TentacleLayout,
-    /// The manubrium and oral arms ([`oral`](super::oral)), drawn after the tentacles.
+    /// The manubrium and oral arms ([`oral`]), drawn after the tentacles.
     pub oral: TentacleLayout,
 }
 

@@ -66,7 +66,7 @@ fn canal(s: &Species, latitude: f32, sigma: f32) -> f32 {
     }
     let half = 0.5 * s.canal_width;
     let ring = coverage((latitude - RING_CANAL).abs() - half);
-    if s.radial_canal_count == 0 || latitude < STOMACH || latitude > RING_CANAL {
+    if s.radial_canal_count == 0 || !(STOMACH..=RING_CANAL).contains(&latitude) {
         return ring;
     }
     let (delta, _) = nearest(sigma, s.radial_canal_count, 0.0);

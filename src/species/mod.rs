@@ -150,9 +150,10 @@ pub struct Species {
     // --- Looks ---
     /// Bell colour, linear RGBA (alpha is the translucency).
     pub bell_color: [f32; 4],
-    /// Emitted light, linear RGB.
+    /// Colour of the light the bell's glow layer adds, linear RGB.
     pub glow_color: [f32; 3],
-    /// Glow strength multiplier.
+    /// Glow strength: the plain bell's glow layer adds `glow_color × glow × 0.25` of
+    /// radiance per surface (before tonemapping), canals and gonads twice that.
     pub glow: f32,
 }
 

@@ -13,8 +13,8 @@ use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    CycleCaches, DetailLevels, JellyfishGeometry, JellyfishMeshes, JellyfishSlice, ShapeBuffers,
-    SurfaceMode, SurfacePath, Tier,
+    CycleCaches, DetailLevels, JellyfishGeometry, JellyfishGlow, JellyfishMeshes, JellyfishSlice,
+    ShapeBuffers, SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceSim, Species, SpeciesRejected,
@@ -876,9 +876,38 @@ fn switching_surfaces_moves_living_jellyfish_between_paths() {
         umbrella_positions(&app, a).len(),
         umbrella_positions(&app, b).len()
     );
+    glow_layers_match_umbrellas(&mut app);
     app.insert_resource(template_settings());
     run(&mut app, 3);
     assert!(shared(&mut app));
+    glow_layers_match_umbrellas(&mut app);
+}
+
+/// One glow layer per jellyfish (none left over from a path it left), drawing the
+/// umbrella's mesh with the umbrella's tag.
+fn glow_layers_match_umbrellas(app: &mut App) {
+    let mut glows = app
+        .world_mut()
+        .query_filtered::<(Entity, &Mesh3d, Option<&MeshTag>, &ChildOf), With<JellyfishGlow>>();
+    let glows: Vec<_> = glows
+        .iter(app.world())
+        .map(|(e, m, t, c)| (e, m.0.id(), t.map(|t| t.0), c.parent()))
+        .collect();
+    let umbrellas = tags(app);
+    assert_eq!(glows.len(), umbrellas.len(), "{glows:?}");
+    for (jellyfish, tag, mesh) in umbrellas {
+        let own = app
+            .world()
+            .get::<JellyfishMeshes>(jellyfish)
+            .unwrap()
+            .glow_entity;
+        let glow = glows
+            .iter()
+            .find(|g| g.3 == jellyfish)
+            .expect("a glow layer");
+        assert_eq!(Some(glow.0), own);
+        assert_eq!((glow.1, glow.2), (mesh.unwrap(), tag), "{glows:?}");
+    }
 }
 
 fn template_settings() -> JellyfishSettings {

@@ -13,9 +13,12 @@ use crate::school::{self, School};
 use crate::screenshot::Offscreen;
 use crate::tank;
 use bevy::diagnostic::DiagnosticsStore;
+use bevy::mesh::MeshTag;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::plugin::{JellyfishSlice, SurfaceMode, SurfacePath};
+use bevy_jellyfish::plugin::{
+    JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode, SurfacePath,
+};
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -228,6 +231,7 @@ fn templates_draw_what_cpu_meshes_draw() {
         let now = shot(40, format!("{surfaces:?}.png"));
         let later = shot(6, format!("{surfaces:?}_later.png"));
         let path = *offscreen.world().resource::<SurfacePath>();
+        glow_layers_follow_their_umbrellas(offscreen.world_mut(), path);
         Some((now, later, path))
     };
     let Some((cpu, _, cpu_path)) = render(SurfaceMode::CpuMeshes) else {
@@ -253,6 +257,55 @@ fn templates_draw_what_cpu_meshes_draw() {
     assert!(
         mean < 0.05 && differing * 50 < moved,
         "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved})"
+    );
+}
+
+/// Every jellyfish draws its umbrella twice: the blended body on itself and the glow layer
+/// on one child, which shares the umbrella's mesh (and, with templates, its shape slot) and
+/// adds its light, so it needs no sorting.
+fn glow_layers_follow_their_umbrellas(world: &mut World, path: SurfacePath) {
+    let mut jellyfish = world.query::<(&JellyfishMeshes, &Mesh3d, Option<&MeshTag>, &Children)>();
+    let mut glows = world.query_filtered::<(&Mesh3d, Option<&MeshTag>), With<JellyfishGlow>>();
+    let mut checked = 0;
+    for (meshes, mesh, tag, children) in jellyfish.iter(world) {
+        let glow = meshes.glow_entity.expect("a glow layer");
+        assert!(children.contains(&glow), "the glow layer is a child");
+        let (glow_mesh, glow_tag) = glows.get(world, glow).expect("marked JellyfishGlow");
+        assert_eq!(
+            glow_mesh.0, mesh.0,
+            "the glow layer draws the umbrella's mesh"
+        );
+        assert_eq!(glow_tag, tag, "and the umbrella's shape slot");
+        let alpha_mode = match path {
+            SurfacePath::CpuMeshes => {
+                let handle = world
+                    .get::<MeshMaterial3d<StandardMaterial>>(glow)
+                    .expect("a glow material");
+                world
+                    .resource::<Assets<StandardMaterial>>()
+                    .get(handle)
+                    .unwrap()
+                    .alpha_mode
+            }
+            SurfacePath::Templates => {
+                let handle = world
+                    .get::<MeshMaterial3d<SurfaceMaterial>>(glow)
+                    .expect("a glow material");
+                world
+                    .resource::<Assets<SurfaceMaterial>>()
+                    .get(handle)
+                    .unwrap()
+                    .base
+                    .alpha_mode
+            }
+        };
+        assert_eq!(alpha_mode, AlphaMode::Add, "the glow layer adds its light");
+        checked += 1;
+    }
+    assert_eq!(
+        checked,
+        3 * PER_SPECIES,
+        "every jellyfish has its glow layer"
     );
 }
 

@@ -1,11 +1,11 @@
 //! The template material: the jellyfish's `StandardMaterial` with a vertex shader that
-//! shapes the template from the shape buffers. One pair (bell, tentacles) per species.
+//! shapes the template from the shape buffers. One set (bell, tentacles, glow) per species.
 
 use super::SurfacePath;
 use super::upload::ShapeBuffers;
 use crate::plugin::JellyfishSystems;
-use crate::plugin::components::{Jellyfish, JellyfishMeshes, JellyfishTentacles};
-use crate::plugin::material::{bell_material, tentacle_material};
+use crate::plugin::components::{Jellyfish, JellyfishGlow, JellyfishMeshes, JellyfishTentacles};
+use crate::plugin::material::{bell_material, glow_material, tentacle_material};
 use crate::plugin::pattern::BellPatterns;
 use crate::species::Species;
 use bevy::pbr::{ExtendedMaterial, MaterialExtension};
@@ -45,12 +45,12 @@ impl MaterialExtension for SurfaceExtension {
     }
 }
 
-/// The template materials made for each species: `[bell, tentacles]`.
+/// The template materials made for each species: `[bell, tentacles, glow]`.
 #[derive(Resource, Default, Reflect)]
 #[reflect(Resource, Default)]
 pub struct SurfaceMaterials {
-    /// Per species, its bell and tentacle materials.
-    pub by_species: HashMap<AssetId<Species>, [Handle<SurfaceMaterial>; 2]>,
+    /// Per species, its bell, tentacle and glow materials.
+    pub by_species: HashMap<AssetId<Species>, [Handle<SurfaceMaterial>; 3]>,
 }
 
 pub(super) fn plugin(app: &mut App) {
@@ -91,8 +91,13 @@ fn update(
                 if s.validate().is_err() {
                     continue;
                 }
-                let bell = bell_material(s, patterns.by_species.get(id));
-                for (handle, base) in pair.iter().zip([bell, tentacle_material(s)]) {
+                let pattern = patterns.by_species.get(id);
+                let bases = [
+                    bell_material(s, pattern),
+                    tentacle_material(s),
+                    glow_material(s, pattern),
+                ];
+                for (handle, base) in pair.iter().zip(bases) {
                     if let Some(mut m) = materials.get_mut(handle) {
                         m.base = base;
                     }
@@ -114,6 +119,7 @@ fn assign(
     mut commands: Commands,
     bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<SurfaceMaterial>>>,
     tentacles: Query<(Entity, &ChildOf), Unassigned<JellyfishTentacles>>,
+    glows: Query<(Entity, &ChildOf), Unassigned<JellyfishGlow>>,
     parents: Query<(&Jellyfish, &JellyfishMeshes)>,
     species: Res<Assets<Species>>,
     buffers: Option<Res<ShapeBuffers>>,
@@ -138,24 +144,36 @@ fn assign(
                     let pattern = images
                         .as_deref_mut()
                         .map(|images| patterns.get_or_make(jelly.species.id(), s, images));
-                    [bell_material(s, pattern.as_ref()), tentacle_material(s)]
-                        .map(|base| materials.add(surface(base, &buffers)))
+                    let pattern = pattern.as_ref();
+                    [
+                        bell_material(s, pattern),
+                        tentacle_material(s),
+                        glow_material(s, pattern),
+                    ]
+                    .map(|base| materials.add(surface(base, &buffers)))
                 })
                 .clone(),
         )
     };
     for (entity, jelly, meshes) in &bells {
         if meshes.umbrella.is_some()
-            && let Some([bell, _]) = get(jelly, meshes)
+            && let Some([bell, ..]) = get(jelly, meshes)
         {
             commands.entity(entity).insert(MeshMaterial3d(bell));
         }
     }
     for (entity, child_of) in &tentacles {
         if let Ok((jelly, meshes)) = parents.get(child_of.parent())
-            && let Some([_, tentacles]) = get(jelly, meshes)
+            && let Some([_, tentacles, _]) = get(jelly, meshes)
         {
             commands.entity(entity).insert(MeshMaterial3d(tentacles));
+        }
+    }
+    for (entity, child_of) in &glows {
+        if let Ok((jelly, meshes)) = parents.get(child_of.parent())
+            && let Some([.., glow]) = get(jelly, meshes)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(glow));
         }
     }
 }

@@ -6,7 +6,7 @@ use super::material::SurfaceMaterial;
 use super::upload::SurfaceSlots;
 use crate::plugin::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
 use crate::plugin::material::JellyfishMaterials;
-use crate::plugin::meshing::new_mesh;
+use crate::plugin::meshing::{glow_layer, new_mesh};
 use crate::plugin::settings::JellyfishSettings;
 use crate::shape::{JellyMesh, Resolution, SliceOutline, build_at};
 use bevy::asset::RenderAssetUsages;
@@ -120,6 +120,18 @@ pub(crate) fn set_up(
         commands
             .entity(entity)
             .insert((Mesh3d(template.umbrella.clone()), tag(slot, 0)));
+        let glow = (Mesh3d(template.umbrella.clone()), tag(slot, 0));
+        match meshes.glow_entity {
+            Some(child) => {
+                commands.entity(child).insert(glow);
+            }
+            None => {
+                let child = commands
+                    .spawn((glow_layer(entity, glow.0, meshes.bounds), glow.1))
+                    .id();
+                meshes.glow_entity = Some(child);
+            }
+        }
         meshes.umbrella = Some(template.umbrella);
         meshes.tentacles = template.tentacles.clone();
         match (template.tentacles, meshes.tentacle_entity) {
@@ -167,7 +179,10 @@ fn tear_down(
     if material.is_some_and(|m| own.is_ours(&m.0)) {
         e.remove::<MeshMaterial3d<StandardMaterial>>();
     }
-    if let Some(child) = meshes.tentacle_entity.take() {
+    for child in [meshes.tentacle_entity.take(), meshes.glow_entity.take()]
+        .into_iter()
+        .flatten()
+    {
         commands.entity(child).despawn();
     }
     slots.give_back(entity);
