@@ -5,9 +5,9 @@
 //! first [`stalk_fraction`] and widening to the mouth. The arms follow, arm `a` at
 //! σ = 2π·a/count over the rest of the chains: blades wide in the radial direction and
 //! thin across, narrow at the mouth, widest a third of the way down, tapering to the tip,
-//! with edges ruffled in waves about two blade widths long (`oral_arm_frill`). Each tube
-//! has a tentacle's layout ([`TentacleLayout`]) with [`ORAL_SIDES`] sides and twice the
-//! rings, so each wave has four or more.
+//! with edges ruffled in waves about two blade widths long (`oral_arm_frill`), but no more
+//! than one wave to eight rings. Each tube has a tentacle's layout ([`TentacleLayout`])
+//! with [`ORAL_SIDES`] sides and twice the rings.
 //!
 //! [`stalk_fraction`]: crate::sim::oral_arms::stalk_fraction
 
@@ -49,9 +49,11 @@ impl OralStyle {
             stalk,
             arm_width: species.oral_arm_width,
             frill: species.oral_arm_frill,
+            // No more waves than the tube's rings draw softly (eight to a wave at the
+            // species' own resolution: fewer are zigzags).
             waves: (arm / (2.0 * species.oral_arm_width.max(1e-6)))
                 .round()
-                .clamp(1.0, 16.0),
+                .clamp(1.0, (species.mesh_rings / 8).max(1) as f32),
         }
     }
 
