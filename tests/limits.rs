@@ -85,6 +85,7 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "tentacle_length" => s.tentacle_length = v,
         "tentacle_cross_section" => s.tentacle_cross_section = v,
         "tentacle_radius" => s.tentacle_radius = v,
+        "tentacle_length_spread" => s.tentacle_length_spread = v,
         "manubrium_length" => s.manubrium_length = v,
         "manubrium_radius" => s.manubrium_radius = v,
         "oral_arm_count" => s.oral_arm_count = count(value),

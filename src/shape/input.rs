@@ -71,6 +71,7 @@ pub fn check(view: &SliceView, species: &Species, time: f32) -> Result<(), Shape
         ("margin_thickness_ratio", s.margin_thickness_ratio),
         ("contraction_ratio", s.contraction_ratio),
         ("tentacle_radius", s.tentacle_radius),
+        ("tentacle_length_spread", s.tentacle_length_spread),
         ("manubrium_radius", s.manubrium_radius),
         ("oral_arm_width", s.oral_arm_width),
         ("oral_arm_frill", s.oral_arm_frill),

@@ -23,7 +23,7 @@ use super::oral::{self, ORAL_SIDES, OralStyle};
 use super::perlin::perlin4;
 use super::profile::Profile;
 use super::tentacles::{self, SIDEWAYS, TentacleLayout};
-use super::variation::{Variation, apex_fade};
+use super::variation::{Variation, apex_fade, tentacle_reach};
 use crate::sim::SliceView;
 use crate::species::Species;
 use glam::{Vec2, Vec3};
@@ -79,8 +79,10 @@ pub const H_ARM_FRILL: usize = 29;
 pub const H_ARM_WAVES: usize = 30;
 /// Rings along each oral tube.
 pub const H_ORAL_POINTS: usize = 31;
+/// The species' `tentacle_length_spread`.
+pub const H_TENTACLE_SPREAD: usize = 32;
 /// Header length.
-pub const HEADER: usize = 32;
+pub const HEADER: usize = 33;
 /// Values per disc: centre (x, y), radius, radial (x, y).
 pub const DISC: usize = 5;
 /// Values per ring: subumbrella disc, exumbrella disc, normals (left, right), latitude,
@@ -155,6 +157,7 @@ impl ShapePacker {
         header[H_LON_RADIUS] = species.noise_frequency_lon / TAU;
         header[H_TAU] = variation.time_coordinate() as f32;
         header[H_TENTACLE_RADIUS] = species.tentacle_radius;
+        header[H_TENTACLE_SPREAD] = species.tentacle_length_spread;
         let style = OralStyle::of(species);
         header[H_ORAL] = bits(res.oral.count);
         header[H_ORAL_POINTS] = bits(res.oral.points);
@@ -358,8 +361,16 @@ fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
     let amplitude = b.0[H_UNSTRUCTURED];
     let along = b.lobe(sigma) + amplitude * b.noise(lat, cs);
     let side = amplitude * fraction * b.noise(lat + SIDEWAYS, cs);
-    let disc = b.disc(b.ring(b.rings() + 1) + m * DISC);
-    disc.point(cs) + normal * along + sideways * side
+    // tentacles::along, between the two discs around the drawn length.
+    let reach = tentacle_reach(b.0[H_SEED].to_bits(), t as u32, b.0[H_TENTACLE_SPREAD]);
+    let x = fraction * reach * (points - 1) as f32;
+    let i = (x as usize).min(points - 2);
+    let first = b.ring(b.rings() + 1);
+    let (p, q) = (
+        b.disc(first + i * DISC).point(cs),
+        b.disc(first + (i + 1) * DISC).point(cs),
+    );
+    p + (q - p) * (x - i as f32) + normal * along + sideways * side
 }
 
 /// Position and normal of vertex `index` of the hanging parts' template (the layout of

@@ -68,7 +68,7 @@ fn hash(seed: u32, corner: [i32; 4]) -> u32 {
 }
 
 /// One step of PCG-RXS-M-XS (O'Neill 2014), as a 32-bit integer hash.
-fn pcg(v: u32) -> u32 {
+pub(crate) fn pcg(v: u32) -> u32 {
     let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
     (word >> 22) ^ word

@@ -133,6 +133,16 @@ pub fn chain_discs(
     aperture
 }
 
+/// The point at `fraction` of the way down the chain's discs (0 the root, 1 the tip), at
+/// angle `cs` around the axis: a tentacle drawn shorter than the chain stops between two
+/// of its discs.
+pub fn along(discs: &[Disc], fraction: f32, cs: (f32, f32)) -> Vec3 {
+    let x = fraction * (discs.len() - 1) as f32;
+    let i = (x as usize).min(discs.len() - 2);
+    let (a, b) = (discs[i].point(cs), discs[i + 1].point(cs));
+    a + (b - a) * (x - i as f32)
+}
+
 /// How far along its tentacle ring `m` lies, 0 at the root, 1 at the tip.
 fn fraction(layout: &TentacleLayout, m: usize) -> f32 {
     m as f32 / (layout.points - 1) as f32
@@ -168,11 +178,13 @@ pub(crate) fn write_surface(
         let lobe = variation.structural(sigma, 1.0);
         let sideways = aperture.direction((-sin, cos));
         let noise = &noise[2 * t * l.points..][..2 * l.points];
+        let reach = variation.tentacle_reach(t);
         s.centre.clear();
-        for (m, (disc, qp)) in s.discs.iter().zip(noise.chunks_exact(2)).enumerate() {
+        for (m, qp) in noise.chunks_exact(2).enumerate() {
             let c = lobe + variation.unstructured_with(1.0, qp[0]);
             let side = variation.unstructured_with(fraction(l, m), qp[1]);
-            s.centre.push(disc.point(cs) + normal * c + sideways * side);
+            let on_chain = along(&s.discs, fraction(l, m) * reach, cs);
+            s.centre.push(on_chain + normal * c + sideways * side);
         }
         tangents(&s.centre, &mut s.tangent);
         let outward = aperture.direction(cs);

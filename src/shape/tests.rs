@@ -12,6 +12,7 @@ fn plain(species: &Species) -> Species {
         structural_scale: 0.0,
         compression_scale: 0.0,
         unstructured_scale: 0.0,
+        tentacle_length_spread: 0.0,
         ..species.clone()
     }
 }
@@ -451,6 +452,56 @@ fn tentacles_hang_from_the_aperture() {
             "tentacle {t} tip {tip}"
         );
     }
+}
+
+#[test]
+fn a_fringe_keeps_its_roots_and_varies_in_length() {
+    let spread = 0.5;
+    let sp = Species {
+        tentacle_length_spread: spread,
+        ..plain(&Species::aurelia())
+    };
+    let slice = SliceOutline::contracted(&sp, 25, 10, 0.7);
+    let layout = Resolution::of(&sp).tentacles;
+    let centre = |mesh: &JellyMesh, t: usize, m: usize| {
+        (0..layout.sides)
+            .map(|i| v3(mesh.tentacles.positions[layout.ring(t, m, i)]))
+            .sum::<Vec3>()
+            / layout.sides as f32
+    };
+    let length = |mesh: &JellyMesh, t: usize| {
+        (1..layout.points)
+            .map(|m| centre(mesh, t, m).distance(centre(mesh, t, m - 1)))
+            .sum::<f32>()
+    };
+    let even = build(&slice.view(), &plain(&sp), 3, 0.0);
+    let fringe = build(&slice.view(), &sp, 3, 0.0);
+    let reaches: Vec<f32> = (0..layout.count)
+        .map(|t| {
+            assert!(
+                centre(&fringe, t, 0).distance(centre(&even, t, 0)) < 1e-6,
+                "tentacle {t} hangs from the margin"
+            );
+            length(&fringe, t) / length(&even, t)
+        })
+        .collect();
+    let (least, most) = reaches
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(a, b), &r| (a.min(r), b.max(r)));
+    // Each is drawn between 1 − spread and all of the chain, and they differ.
+    assert!(
+        least >= 1.0 - spread - 1e-3 && most <= 1.0 + 1e-3,
+        "{least}..{most}"
+    );
+    assert!(most - least > 0.8 * spread, "{least}..{most}");
+    // An individual's own: the same seed, the same fringe; another seed, another one.
+    let again = build(&slice.view(), &sp, 3, 1.0);
+    let other = build(&slice.view(), &sp, 4, 0.0);
+    let tip = |mesh: &JellyMesh| centre(mesh, 5, layout.points - 1);
+    assert!(tip(&again).distance(tip(&fringe)) < 1e-6);
+    assert!(
+        (0..layout.count).any(|t| (length(&other, t) / length(&even, t) - reaches[t]).abs() > 0.1)
+    );
 }
 
 /// Reference normals: area-weighted sums of the triangle normals, seam twins welded.

@@ -4,7 +4,7 @@
 //! Amplitudes are the species' scales times `thickness` (paper: α_str = 0.375·ϑ,
 //! α_unstr = 2.25·ϑ, compression up to (1.51 − 1.36)·ϑ).
 
-use super::perlin::perlin4;
+use super::perlin::{pcg, perlin4};
 use crate::species::Species;
 use std::f32::consts::TAU;
 
@@ -28,6 +28,8 @@ pub struct Variation {
     lon_radius: f32,
     /// `f_t · t`: the noise field's fourth coordinate.
     time: f64,
+    /// The species' `tentacle_length_spread`.
+    tentacle_spread: f32,
 }
 
 impl Variation {
@@ -45,7 +47,14 @@ impl Variation {
             lat_frequency: species.noise_frequency_lat,
             lon_radius: species.noise_frequency_lon / TAU,
             time: species.noise_frequency_time as f64 * time as f64,
+            tentacle_spread: species.tentacle_length_spread,
         }
+    }
+
+    /// How much of the slice's chain tentacle `t` of this individual is drawn, in
+    /// `[1 − spread, 1]`: its own for life (a hash of the seed and `t`, not noise in time).
+    pub fn tentacle_reach(&self, t: usize) -> f32 {
+        tentacle_reach(self.seed, t as u32, self.tentacle_spread)
     }
 
     /// Structural lobes `α_str·sin(f·σ)` (or `|sin|`), faded in near the apex. A
@@ -104,6 +113,13 @@ impl Variation {
     pub fn unstructured_amplitude(&self) -> f32 {
         self.unstructured
     }
+}
+
+/// `1 − spread·u`, `u` in [0, 1) hashed from `seed` and tentacle `t` (integer arithmetic
+/// and an exact conversion, so the vertex shader gets the same number).
+pub fn tentacle_reach(seed: u32, t: u32, spread: f32) -> f32 {
+    let u = (pcg(seed ^ pcg(t)) >> 8) as f32 / (1u32 << 24) as f32;
+    (1.0 - spread * u).clamp(0.0, 1.0)
 }
 
 /// 0 at the apex rising smoothly to 1 at latitude [`APEX_FADE`].

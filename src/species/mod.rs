@@ -89,6 +89,11 @@ pub struct Species {
     pub tentacle_cross_section: f32,
     /// Rendered tentacle radius, m.
     pub tentacle_radius: f32,
+    /// How much shorter than the slice's chain a tentacle may be drawn, as a fraction of
+    /// it: each tentacle of an individual keeps its own length between `1 − spread` and 1
+    /// of the chain, as a living fringe holds some tentacles contracted (0: an even
+    /// fringe). Drawn only: the slice's chain, and so the drag, keep `tentacle_length`.
+    pub tentacle_length_spread: f32,
 
     // --- Anatomy (drawn; carried by the slice's water, never pushing it) ---
     /// Length of the manubrium, the stalk carrying the mouth from the subumbrellar apex, m
@@ -200,6 +205,7 @@ impl Species {
             tentacle_length: 0.015,
             tentacle_cross_section: 0.01,
             tentacle_radius: 0.00015,
+            tentacle_length_spread: 0.35,
             // Four frilly oral arms from a short manubrium, four horseshoe gonads between
             // them and sixteen radial canals: how a moon jelly is recognised.
             manubrium_length: 0.003,
@@ -251,6 +257,8 @@ impl Species {
             tentacle_count: 100,
             tentacle_length: 0.045,
             tentacle_radius: 0.00025,
+            // Some of a crystal jelly's long tentacles hang full length, others curled up.
+            tentacle_length_spread: 0.6,
             tentacle_sides: 4,
             // A short, wide stomach fringed with lips, gonads along its many radial canals.
             manubrium_length: 0.003,
@@ -272,7 +280,7 @@ impl Species {
             unstructured_scale: 0.2,
             bell_color: [0.8, 0.95, 0.9, 0.25],
             glow_color: [0.3, 1.0, 0.45],
-            glow: 0.9,
+            glow: 0.5,
             ..Self::aurelia()
         }
     }
@@ -292,6 +300,7 @@ impl Species {
             tentacle_count: 4,
             tentacle_length: 0.025,
             tentacle_radius: 0.0003,
+            tentacle_length_spread: 0.15,
             tentacle_sides: 6,
             // A long tubular manubrium hanging out of the bell, four radial canals.
             manubrium_length: 0.02,

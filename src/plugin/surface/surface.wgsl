@@ -47,7 +47,8 @@ const H_ARM_WIDTH: u32 = 28u;
 const H_ARM_FRILL: u32 = 29u;
 const H_ARM_WAVES: u32 = 30u;
 const H_ORAL_POINTS: u32 = 31u;
-const HEADER: u32 = 32u;
+const H_TENTACLE_SPREAD: u32 = 32u;
+const HEADER: u32 = 33u;
 const DISC: u32 = 5u;
 const RING: u32 = 16u;
 // tentacles::SIDEWAYS and variation::APEX_FADE.
@@ -317,8 +318,20 @@ fn tentacle_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
     let amplitude = shapes[base + H_UNSTRUCTURED];
     let along = lobe(base, sigma) + amplitude * noise(base, lat, cs);
     let side = amplitude * fraction * noise(base, lat + SIDEWAYS, cs);
-    let disc = read_disc(ring_at(base, count(base, H_RINGS) + 1u) + m * DISC);
-    return disc_point(disc, cs) + normal * along + sideways * side;
+    // tentacles::along, between the two discs around the drawn length.
+    let x = fraction * tentacle_reach(base, t) * f32(points - 1u);
+    let i = min(u32(x), points - 2u);
+    let first = ring_at(base, count(base, H_RINGS) + 1u);
+    let p = disc_point(read_disc(first + i * DISC), cs);
+    let q = disc_point(read_disc(first + (i + 1u) * DISC), cs);
+    return p + (q - p) * (x - f32(i)) + normal * along + sideways * side;
+}
+
+// variation::tentacle_reach.
+fn tentacle_reach(base: u32, t: u32) -> f32 {
+    let seed = bitcast<u32>(shapes[base + H_SEED]);
+    let u = f32(pcg(seed ^ pcg(t)) >> 8u) / 16777216.0;
+    return clamp(1.0 - shapes[base + H_TENTACLE_SPREAD] * u, 0.0, 1.0);
 }
 
 // tentacles::across and tentacles::perpendicular.
