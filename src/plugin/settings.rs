@@ -41,7 +41,7 @@ pub enum SurfaceMode {
     /// few kilobytes a frame and the vertex shader builds its surface. Falls back to CPU
     /// meshes, with a warning, on a device that cannot.
     Templates,
-    /// Every jellyfish's meshes rebuilt on the CPU and re-uploaded each frame (~250 KB for
+    /// Every jellyfish's meshes rebuilt on the CPU and re-uploaded each frame (~280 KB for
     /// a moon jelly): the reference, and what a custom `StandardMaterial` needs.
     CpuMeshes,
 }

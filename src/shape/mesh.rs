@@ -57,9 +57,7 @@ impl Resolution {
                     0
                 },
                 sides: species.tentacle_sides.clamp(3, 32) as usize,
-                // Half as many rings along a tentacle as on the bell (a thin tube bends
-                // smoothly with fewer): tentacles are most of a fringed jellyfish's vertices.
-                points: rings / 2 + 1,
+                points: crate::species::limits::tentacle_points(species, rings),
             },
             oral: TentacleLayout {
                 count: oral,

@@ -237,17 +237,29 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
 }
 
 /// Vertices of the species' mesh: both umbrella surfaces (an apex vertex and `rings`
-/// rings of `segments + 1`), the tentacles (two caps and `rings / 2 + 1` rings of
-/// `sides + 1` each) and the oral tubes (`rings + 1` rings of [`ORAL_SIDES`]` + 1`). `shape::Resolution` builds exactly this (a test holds them equal).
+/// rings of `segments + 1`), the tentacles (two caps and [`tentacle_points`] rings of
+/// `sides + 1` each) and the oral tubes (`rings + 1` rings of [`ORAL_SIDES`]` + 1`).
+/// `shape::Resolution` builds exactly this (a test holds them equal).
 pub fn mesh_vertices(s: &Species) -> usize {
     let (rings, segments) = (s.mesh_rings as usize, s.mesh_segments as usize);
     let umbrella = 2 * (1 + rings * (segments + 1));
     let tentacles = if s.tentacle_length > 0.0 {
-        s.tentacle_count as usize * (2 + (rings / 2 + 1) * (s.tentacle_sides as usize + 1))
+        s.tentacle_count as usize
+            * (2 + tentacle_points(s, rings) * (s.tentacle_sides as usize + 1))
     } else {
         0
     };
     umbrella + tentacles + oral_tubes(s) * (2 + (rings + 1) * (ORAL_SIDES + 1))
+}
+
+/// Rings along each tentacle for a bell of `rings` rings: half the bell's for a tentacle a
+/// bell diameter long or longer (a thin tube bends smoothly with fewer), in proportion for
+/// shorter ones, at least three. A moon jelly's short fringe is most of its vertices.
+pub fn tentacle_points(s: &Species, rings: usize) -> usize {
+    let most = rings / 2 + 1;
+    let share = (s.tentacle_length / s.diameter).clamp(0.0, 1.0);
+    let share = if share.is_finite() { share } else { 1.0 };
+    ((share * (rings / 2) as f32).round() as usize + 1).clamp(3.min(most), most)
 }
 
 /// Sides of the manubrium's and the oral arms' tubes: eight, so a blade has two edges.
