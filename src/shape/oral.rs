@@ -97,8 +97,15 @@ pub fn fraction(layout: &TentacleLayout, m: usize) -> f32 {
     m as f32 / (layout.points - 1) as f32
 }
 
-/// The discs the tubes sweep: `points` along the manubrium, then `points` along the arms,
-/// from the two oral chains (an empty chain stands at `apex`).
+/// Discs along the manubrium, and again along the arms: half the tubes' rings (the slice's
+/// chains have 16 points; the rings between discs are interpolated, so the packed shape
+/// carries half as many).
+pub fn disc_count(layout: &TentacleLayout) -> usize {
+    ((layout.points - 1) / 2 + 1).max(2)
+}
+
+/// The discs the tubes sweep: [`disc_count`] along the manubrium, then as many along the
+/// arms, from the two oral chains (an empty chain stands at `apex`).
 pub fn chain_discs(
     layout: &TentacleLayout,
     style: &OralStyle,
@@ -114,10 +121,11 @@ pub fn chain_discs(
         }
     });
     out.clear();
+    let n = disc_count(layout);
     for (from, to) in [(0.0, style.stalk), (style.stalk, 1.0)] {
         let mut radial = Vec2::X;
-        for m in 0..layout.points {
-            let along = from + (to - from) * fraction(layout, m);
+        for k in 0..n {
+            let along = from + (to - from) * (k as f32 / (n - 1) as f32);
             let at = |c: &[Vec2]| catmull_rom(c, along * (c.len() - 1) as f32);
             let disc = Disc::through(at(chains[0]), at(chains[1]), radial);
             radial = disc.radial;
@@ -134,11 +142,20 @@ pub fn centre(
     t: usize,
     m: usize,
 ) -> Vec3 {
+    let n = disc_count(layout);
+    let x = fraction(layout, m) * (n - 1) as f32;
+    let i = (x as usize).min(n - 2);
+    let w = x - i as f32;
     if style.is_manubrium(t) {
-        return discs[m].centre;
+        let (a, b) = (discs[i].centre, discs[i + 1].centre);
+        return a + (b - a) * w;
     }
     let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
-    discs[layout.points + m].point((cos, sin))
+    let (a, b) = (
+        discs[n + i].point((cos, sin)),
+        discs[n + i + 1].point((cos, sin)),
+    );
+    a + (b - a) * w
 }
 
 /// Position and normal of a section vertex: `e = cos φ`, `o = sin φ` around the tube whose

@@ -12,7 +12,8 @@
 //! Block layout (`f32` offsets; counts stored as `u32` bits): the header (`H_*`), then
 //! `rings + 1` rings of [`RING`] values (subumbrella disc, exumbrella disc, the two
 //! mesoglea normals, latitude, contraction), then `points` tentacle discs of [`DISC`],
-//! then, if the species has oral tubes, `points` manubrium discs and `points` arm discs.
+//! then, if the species has oral tubes, [`oral::disc_count`] manubrium discs and as many
+//! arm discs.
 //!
 //! [`build_into`]: super::build_into
 
@@ -97,7 +98,7 @@ pub fn block_len(res: &Resolution) -> usize {
 /// Discs of the manubrium and the arms in the block.
 fn oral_discs(res: &Resolution) -> usize {
     if res.oral.count > 0 {
-        2 * res.oral.points
+        2 * oral::disc_count(&res.oral)
     } else {
         0
     }
@@ -419,11 +420,20 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
 /// Centre of oral tube `t`'s ring `m`, as `oral::centre` places it.
 fn oral_centre(b: Block, layout: &TentacleLayout, style: &OralStyle, t: usize, m: usize) -> Vec3 {
     let discs = b.ring(b.rings() + 1) + b.count(H_POINTS) * DISC;
+    // oral::centre, between the two discs around ring m.
+    let n = oral::disc_count(layout);
+    let x = oral::fraction(layout, m) * (n - 1) as f32;
+    let i = (x as usize).min(n - 2);
+    let w = x - i as f32;
     if style.is_manubrium(t) {
-        return b.disc(discs + m * DISC).centre;
+        let p = b.disc(discs + i * DISC).centre;
+        let q = b.disc(discs + (i + 1) * DISC).centre;
+        return p + (q - p) * w;
     }
     let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
-    b.disc(discs + (layout.points + m) * DISC).point((cos, sin))
+    let p = b.disc(discs + (n + i) * DISC).point((cos, sin));
+    let q = b.disc(discs + (n + i + 1) * DISC).point((cos, sin));
+    p + (q - p) * w
 }
 
 /// Position and normal of oral tube vertex `index` (counted from the first oral vertex),

@@ -380,14 +380,29 @@ fn oral_section(base: u32, manubrium: bool, f: f32) -> vec2<f32> {
     return vec2(half, 0.3 * half);
 }
 
+// oral::disc_count.
+fn oral_disc_count(points: u32) -> u32 {
+    return max((points - 1u) / 2u + 1u, 2u);
+}
+
+// oral::centre, between the two discs around ring m.
 fn oral_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
     let points = count(base, H_ORAL_POINTS);
     let discs = ring_at(base, count(base, H_RINGS) + 1u) + count(base, H_POINTS) * DISC;
+    let n = oral_disc_count(points);
+    let x = f32(m) / f32(points - 1u) * f32(n - 1u);
+    let i = min(u32(x), n - 2u);
+    let w = x - f32(i);
     if is_manubrium(base, t) {
-        return read_disc(discs + m * DISC).centre;
+        let a = read_disc(discs + i * DISC).centre;
+        let b = read_disc(discs + (i + 1u) * DISC).centre;
+        return a + (b - a) * w;
     }
     let sigma = arm_angle(base, t).y;
-    return disc_point(read_disc(discs + (points + m) * DISC), vec2(cos(sigma), sin(sigma)));
+    let cs = vec2(cos(sigma), sin(sigma));
+    let a = disc_point(read_disc(discs + (n + i) * DISC), cs);
+    let b = disc_point(read_disc(discs + (n + i + 1u) * DISC), cs);
+    return a + (b - a) * w;
 }
 
 fn oral_vertex(base: u32, index: u32) -> Surface {
