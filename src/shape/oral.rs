@@ -14,7 +14,7 @@
 use super::buffers::SurfaceBuffers;
 use super::discs::Disc;
 use super::spline::catmull_rom;
-use super::tentacles::{TentacleLayout, across, tangent};
+use super::tentacles::{TentacleLayout, across, along, tangent};
 use crate::sim::oral_arms::stalk_fraction;
 use crate::species::Species;
 pub use crate::species::limits::ORAL_SIDES;
@@ -142,20 +142,13 @@ pub fn centre(
     t: usize,
     m: usize,
 ) -> Vec3 {
-    let n = disc_count(layout);
-    let x = fraction(layout, m) * (n - 1) as f32;
-    let i = (x as usize).min(n - 2);
-    let w = x - i as f32;
+    let (n, f) = (disc_count(layout), fraction(layout, m));
     if style.is_manubrium(t) {
-        let (a, b) = (discs[i].centre, discs[i + 1].centre);
-        return a + (b - a) * w;
+        // On the axis: the discs' centres, between the two around ring m.
+        return along(&discs[..n], f, (0.0, 0.0));
     }
     let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
-    let (a, b) = (
-        discs[n + i].point((cos, sin)),
-        discs[n + i + 1].point((cos, sin)),
-    );
-    a + (b - a) * w
+    along(&discs[n..2 * n], f, (cos, sin))
 }
 
 /// Position and normal of a section vertex: `e = cos φ`, `o = sin φ` around the tube whose
