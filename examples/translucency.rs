@@ -1,11 +1,11 @@
 //! Do overlapping jellyfish pop? One of each species side by side, overlapping in the
 //! view, the clock stopped, the camera orbiting slowly across the angle where their
 //! distances to it swap. Every frame is drawn twice: with translucent meshes sorted by
-//! their origins (Bevy's default) and with order-independent transparency (OIT, sorted per
-//! fragment: the reference).
+//! their bounding boxes' centres (Bevy's default) and with order-independent transparency
+//! (OIT, sorted per fragment: the reference).
 //!
-//! Sorted by origin, where two translucent surfaces overlap the order of the whole meshes
-//! decides what is in front: when two origins swap, a patch of the picture changes at once,
+//! Sorted by centres, where two translucent surfaces overlap the order of the whole meshes
+//! decides what is in front: when two centres swap, a patch of the picture changes at once,
 //! in one frame (a pop). Smooth camera motion changes the picture steadily, so a frame is
 //! close to the mean of its neighbours; a pop is not. Thin tentacles stepping from pixel to
 //! pixel (no MSAA: OIT does not combine with it) are off that mean too, but identically in
@@ -74,11 +74,15 @@ fn main() {
     let centre =
         jellyfish.iter().map(|j| j.1).sum::<Vec3>() / jellyfish.len() as f32 - Vec3::Y * 0.3;
     let eye_at = |angle: f32| centre + Quat::from_rotation_y(angle) * Vec3::new(0.0, 0.3, 3.2);
-    // Where the two in front are equally deep in the view (their sorting swaps), found
-    // from where they swam to in those two seconds.
+    // Where the origins of the two in front are equally deep in the view, found from where
+    // they swam to in those two seconds. Bevy sorts by the meshes' bounding-box centres,
+    // which lie a little off the origins: their swap is near, not at, this angle.
     let gap = |angle: f32| (centre - eye_at(angle)).dot(jellyfish[0].1 - jellyfish[1].1);
     let swap = bisect(gap, -0.5, 0.5);
-    println!("the two in front swap order at {:.2}°", swap.to_degrees());
+    println!(
+        "the origins of the two in front are equally deep at {:.2}°",
+        swap.to_degrees()
+    );
     let dir = out.clone().unwrap_or_else(std::env::temp_dir);
     std::fs::create_dir_all(&dir).expect("the output folder");
     let (mut sorted, mut oit) = (Vec::new(), Vec::new());
@@ -136,7 +140,7 @@ fn main() {
         .map(|k| k + 1)
         .collect();
     println!(
-        "sorted by origin beyond OIT, the largest 8×8 block off the mean of its neighbours \
+        "sorted by centres beyond OIT, the largest 8×8 block off the mean of its neighbours \
          (of 255), over {} frames: median {median:.1}, largest {largest:.1}; frames above 3× \
          the median: {pops:?}",
         excess.len()

@@ -1,8 +1,8 @@
 //! The jellyfish material, in two layers: a faint alpha-blended body (fresnel rim, light
 //! through the mesoglea) and an additive glow layer carrying the canals and gonads.
 //!
-//! Alpha-blended surfaces are sorted by their meshes' origins only, so where two bells
-//! overlap the order of the whole meshes decides which is in front. Added light does not
+//! Alpha-blended surfaces are sorted by their meshes' bounding-box centres only, so where
+//! two bells overlap the order of the whole meshes decides which is in front. Added light does not
 //! depend on the order it is drawn in: the bright part of a jellyfish is additive and
 //! needs no sorting, and the body is faint enough that drawing it in the wrong order
 //! changes a pixel by little (`examples/translucency.rs` measures it). For close-ups,
