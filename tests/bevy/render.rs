@@ -277,27 +277,8 @@ fn glow_layers_follow_their_umbrellas(world: &mut World, path: SurfacePath) {
         );
         assert_eq!(glow_tag, tag, "and the umbrella's shape slot");
         let alpha_mode = match path {
-            SurfacePath::CpuMeshes => {
-                let handle = world
-                    .get::<MeshMaterial3d<StandardMaterial>>(glow)
-                    .expect("a glow material");
-                world
-                    .resource::<Assets<StandardMaterial>>()
-                    .get(handle)
-                    .unwrap()
-                    .alpha_mode
-            }
-            SurfacePath::Templates => {
-                let handle = world
-                    .get::<MeshMaterial3d<SurfaceMaterial>>(glow)
-                    .expect("a glow material");
-                world
-                    .resource::<Assets<SurfaceMaterial>>()
-                    .get(handle)
-                    .unwrap()
-                    .base
-                    .alpha_mode
-            }
+            SurfacePath::CpuMeshes => material::<StandardMaterial>(world, glow).alpha_mode,
+            SurfacePath::Templates => material::<SurfaceMaterial>(world, glow).base.alpha_mode,
         };
         assert_eq!(alpha_mode, AlphaMode::Add, "the glow layer adds its light");
         checked += 1;
@@ -307,6 +288,12 @@ fn glow_layers_follow_their_umbrellas(world: &mut World, path: SurfacePath) {
         3 * PER_SPECIES,
         "every jellyfish has its glow layer"
     );
+}
+
+/// The material of type `M` an entity is drawn with.
+fn material<M: Material>(world: &World, entity: Entity) -> &M {
+    let handle = world.get::<MeshMaterial3d<M>>(entity).expect("a material");
+    world.resource::<Assets<M>>().get(handle).unwrap()
 }
 
 /// A minute and a half of swimming, headless: steering keeps every bell in the tank
