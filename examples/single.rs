@@ -1,6 +1,6 @@
 //! One jellyfish, an orbit camera and a debug overlay of its slice.
 //!
-//! `cargo run --example single -- [aurelia|aequorea|sarsia]`
+//! `cargo run --release --features examples --example single -- [aurelia|aequorea|sarsia]`
 //!
 //! Drag with the left mouse button to orbit, scroll to zoom. `D` toggles the overlay, drawn
 //! in the slice's plane through the bell: fluid velocity arrows, trace particles carried by

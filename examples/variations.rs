@@ -3,7 +3,7 @@
 //! variation together (`Species::with_paper_variations`); the last column is the shipped
 //! moon jelly's smoother surface.
 //!
-//! `cargo run --example variations -- --out variations.png [--elevation 22]` (degrees the
+//! `cargo run --release --features examples --example variations -- --out variations.png [--elevation 22]` (degrees the
 //! camera looks down; negative looks up into the subumbrella).
 //! Headless: no window; with no GPU it runs on Mesa's software Vulkan (`mesa-vulkan-drivers`,
 //! set `XDG_RUNTIME_DIR` to quiet it). The slices are hand-made ([`SliceOutline`]): the

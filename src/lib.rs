@@ -27,8 +27,8 @@ pub mod species;
 pub use editor::JellyfishEditorPlugin;
 #[cfg(feature = "bevy")]
 pub use plugin::{
-    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, JellyfishSystems,
-    SpeciesRejected,
+    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishPlugins, JellyfishSettings,
+    JellyfishSystems, SpeciesRejected,
 };
 pub use sim::{SliceSim, SliceView};
 pub use species::{GonadShape, Species, SpeciesError};
@@ -40,9 +40,9 @@ pub mod prelude {
     #[cfg(feature = "bevy")]
     pub use crate::plugin::{
         AmbientWater, DetailLevels, Jellyfish, JellyfishDiagnostics, JellyfishGeometry,
-        JellyfishPlugin, JellyfishSettings, JellyfishSlice, JellyfishStarted, JellyfishSystems,
-        Pose, Resting, SliceRecovered, SpeciesRejected, Steering, StrokeStarted, SurfaceMode,
-        SwimMotion, TankWater, Tier,
+        JellyfishPlugin, JellyfishPlugins, JellyfishSettings, JellyfishSlice, JellyfishStarted,
+        JellyfishSystems, Pose, Resting, SliceRecovered, SpeciesRejected, Steering, StrokeStarted,
+        SurfaceMode, SwimMotion, TankWater, Tier,
     };
     pub use crate::species::{GonadShape, Species, SpeciesError};
 }

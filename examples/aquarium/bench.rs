@@ -56,7 +56,7 @@ pub fn run(
         warm_up_frames += 1;
         if let Some(error) = load_failure(&mut app) {
             return Err(format!(
-                "{error}; run it from the repository (`cargo run --release --example \
+                "{error}; run it from the repository (`cargo run --release --features examples --example \
                  aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder holding assets/"
             ));
         }

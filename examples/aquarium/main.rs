@@ -1,6 +1,6 @@
 //! The aquarium: schools of three species of jellyfish in a lit tank.
 //!
-//! `cargo run --release --example aquarium -- [--count N] [--seed S] [--oit]`
+//! `cargo run --release --features examples --example aquarium -- [--count N] [--seed S] [--oit]`
 //!
 //! `--oit` draws the translucent bells with Bevy's order-independent transparency
 //! (MSAA off): overlapping bells blend in the right order wherever they cross, at some
@@ -12,11 +12,11 @@
 //! the log prints the same numbers.
 //!
 //! Offscreen, without a window (Mesa's software Vulkan will do):
-//! `cargo run --release --example aquarium -- --screenshot out.png --frames 120
+//! `cargo run --release --features examples --example aquarium -- --screenshot out.png --frames 120
 //! [--size 1280x720]` renders that many frames at 60 simulated frames per second,
 //! writes the last one and exits.
 //!
-//! The headless benchmark, no renderer at all: `cargo run --release --example aquarium --
+//! The headless benchmark, no renderer at all: `cargo run --release --features examples --example aquarium --
 //! --bench [--count N] [--frames 600] [--fps 60]` prints the wall and CPU time of a frame,
 //! the spread of frame times and the mesh data handed to the renderer.
 

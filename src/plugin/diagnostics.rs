@@ -1,10 +1,11 @@
-//! Simulation and meshing time and mesh data per frame as Bevy diagnostics.
+//! Simulation and meshing time, mesh data and levels of detail per frame, as Bevy
+//! diagnostics.
 
-use super::components::JellyfishSlice;
+use super::schedule::JellyfishSystems;
+use super::slice::JellyfishSlice;
+use super::timings::JellyfishTimings;
 use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
 use bevy::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Duration;
 
 /// The plugin's diagnostic paths. Times are CPU milliseconds per frame summed over all
 /// jellyfish (systems run in parallel, so wall time is lower on several cores); divide
@@ -33,58 +34,26 @@ impl JellyfishDiagnostics {
     pub const MESH_DATA: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mesh_data_mb");
 }
 
-/// Time accumulated by the parallel systems during a frame (atomics, so any thread adds).
-#[derive(Resource, Default)]
-pub(crate) struct JellyfishTimings {
-    simulation_ns: AtomicU64,
-    meshing_ns: AtomicU64,
-    water_ns: AtomicU64,
-    mesh_bytes: AtomicU64,
-    tier_changes: AtomicU64,
-}
+/// Registers [`JellyfishDiagnostics`] and records them at the end of every frame.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct JellyfishDiagnosticsPlugin;
 
-impl JellyfishTimings {
-    /// Adds time spent stepping slices this frame.
-    pub fn add_simulation(&self, d: Duration) {
-        self.simulation_ns
-            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
+impl Plugin for JellyfishDiagnosticsPlugin {
+    fn build(&self, app: &mut App) {
+        let ms = |path| Diagnostic::new(path).with_suffix(" ms");
+        app.register_diagnostic(ms(JellyfishDiagnostics::SIMULATION))
+            .register_diagnostic(ms(JellyfishDiagnostics::MESHING))
+            .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
+            .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::NEAR))
+            .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MID))
+            .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::FAR))
+            .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::TIER_CHANGES))
+            .register_diagnostic(
+                Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"),
+            )
+            .register_diagnostic(ms(JellyfishDiagnostics::WATER))
+            .add_systems(Last, record.in_set(JellyfishSystems::Diagnostics));
     }
-
-    /// Adds time spent meshing this frame.
-    pub fn add_meshing(&self, d: Duration) {
-        self.meshing_ns
-            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
-    }
-
-    /// Adds time spent on the tank's water this frame.
-    pub fn add_water(&self, d: Duration) {
-        self.water_ns
-            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
-    }
-
-    /// Counts jellyfish that changed tier this frame.
-    pub fn add_tier_changes(&self, count: usize) {
-        self.tier_changes.fetch_add(count as u64, Ordering::Relaxed);
-    }
-
-    /// Counts mesh bytes written this frame.
-    pub fn add_mesh_bytes(&self, bytes: usize) {
-        self.mesh_bytes.fetch_add(bytes as u64, Ordering::Relaxed);
-    }
-}
-
-pub(super) fn plugin(app: &mut App) {
-    app.init_resource::<JellyfishTimings>()
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::SIMULATION).with_suffix(" ms"))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESHING).with_suffix(" ms"))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::COUNT))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::NEAR))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MID))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::FAR))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::TIER_CHANGES))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"))
-        .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::WATER).with_suffix(" ms"))
-        .add_systems(Last, record);
 }
 
 fn record(
@@ -92,15 +61,13 @@ fn record(
     timings: Res<JellyfishTimings>,
     slices: Query<&JellyfishSlice>,
 ) {
-    let ms = |ns: &AtomicU64| ns.swap(0, Ordering::Relaxed) as f64 * 1e-6;
-    let (simulation, meshing) = (ms(&timings.simulation_ns), ms(&timings.meshing_ns));
-    diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || simulation);
-    diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || meshing);
-    let water = ms(&timings.water_ns);
-    diagnostics.add_measurement(&JellyfishDiagnostics::WATER, || water);
-    let bytes = timings.mesh_bytes.swap(0, Ordering::Relaxed);
-    diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || bytes as f64 * 1e-6);
-    let changes = timings.tier_changes.swap(0, Ordering::Relaxed) as f64;
+    let frame = timings.take();
+    diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || frame.simulation_ms);
+    diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || frame.meshing_ms);
+    diagnostics.add_measurement(&JellyfishDiagnostics::WATER, || frame.water_ms);
+    let mb = frame.mesh_bytes as f64 * 1e-6;
+    diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || mb);
+    let changes = frame.tier_changes as f64;
     diagnostics.add_measurement(&JellyfishDiagnostics::TIER_CHANGES, || changes);
     let mut tiers = [0usize; 3];
     for slice in slices.iter().filter(|s| s.started()) {

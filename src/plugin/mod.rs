@@ -1,5 +1,5 @@
-//! The ECS plugin: jellyfish as entities, slices stepped at a fixed rate, meshes rebuilt
-//! every frame, species as hot-reloadable assets.
+//! The ECS plugin: jellyfish as entities, slices stepped by the frame's virtual time,
+//! meshes rebuilt every frame, species as hot-reloadable assets.
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -16,129 +16,118 @@
 //!     .run();
 //! ```
 //!
-//! Order of a frame, in [`JellyfishSystems`]: `Prepare` (PreUpdate) creates slices,
-//! applies species edits and chooses each jellyfish's level of detail ([`Tier`]);
-//! `StepSlices` (PostUpdate) steps them by the frame's virtual time; `WriteTransforms` and
-//! `RebuildMeshes` (PostUpdate) blend the last two steps into the frame. The tank's water
-//! ([`TankWater`]) steps on the app's fixed ticks.
+//! [`JellyfishPlugin`] adds [`JellyfishPlugins`], one plugin per concern, each in its own
+//! module and each owning its state; data flows one way, from the species down to the
+//! pictures:
+//!
+//! | plugin | what it does |
+//! |---|---|
+//! | [`JellyfishSchedulePlugin`] | the [`JellyfishSystems`] sets in order, the settings |
+//! | [`SpeciesAssetPlugin`] | `*.species.ron` loaded and validated, [`SpeciesRejected`] |
+//! | [`WaterPlugin`] | the [`AmbientWater`] every jellyfish swims in |
+//! | [`SwimmingPlugin`] | travel: surge, current, vorticity, [`Steering`], [`Resting`] |
+//! | [`InterpolationPlugin`] | the last steps kept, the `Transform` blended between them |
+//! | [`SlicePlugin`] | slices created, edited, stepped; lifecycle events |
+//! | [`TankWaterPlugin`] | a [`TankWater`] stepped and stirred by the jellyfish's jets |
+//! | [`JellyfishRenderPlugin`] | surfaces rebuilt each frame (CPU meshes or templates), bounds |
+//! | [`JellyfishMaterialPlugin`] | our two-layer material and its patterns |
+//! | [`DetailPlugin`] | levels of detail ([`Tier`]) and the recorded cycles |
+//! | [`JellyfishDiagnosticsPlugin`] | [`JellyfishDiagnostics`] each frame |
+//!
+//! A game leaves out what it does not want:
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_jellyfish::plugin::{DetailPlugin, JellyfishPlugins, TankWaterPlugin};
+//!
+//! App::new().add_plugins((
+//!     DefaultPlugins,
+//!     JellyfishPlugins::default()
+//!         .build()
+//!         .disable::<DetailPlugin>()
+//!         .disable::<TankWaterPlugin>(),
+//! ));
+//! ```
+//!
+//! The schedule, the species assets, swimming, interpolation and the slice are the core
+//! every other part builds on; the rest may be left out.
 
-mod asset;
-mod components;
-mod culling;
-mod detail;
 mod diagnostics;
-mod events;
-mod geometry;
-mod material;
-mod meshing;
-mod motion;
-mod pattern;
-mod prepare;
+mod interpolation;
+mod jellyfish;
+mod lod;
+mod render;
+mod schedule;
 mod settings;
-mod steering;
-mod step;
-mod surface;
+mod slice;
+mod species_asset;
+mod swimming;
 mod tank;
+mod timings;
 mod water;
 
-pub use asset::{SpeciesLoader, SpeciesRejected};
-pub use components::{
-    Jellyfish, JellyfishGlow, JellyfishMeshes, JellyfishSlice, JellyfishTentacles, Pose, Resting,
-    SwimMotion,
+pub use diagnostics::{JellyfishDiagnostics, JellyfishDiagnosticsPlugin};
+pub use interpolation::InterpolationPlugin;
+pub use jellyfish::Jellyfish;
+pub use lod::{CycleCaches, DetailPlugin};
+pub use render::{
+    BellPatterns, GLOW_RADIANCE, JellyfishGeometry, JellyfishGlow, JellyfishMaterialPlugin,
+    JellyfishMeshes, JellyfishRenderPlugin, JellyfishTentacles, PatternImages, ShapeBuffers,
+    SpeciesMaterials, SurfaceExtension, SurfaceMaterial, SurfacePath, WorldSurfaces, bell_material,
+    glow_material, pattern_images, tentacle_material,
 };
-pub use detail::{CycleCaches, DetailLevels, Tier, tier_species};
-pub use diagnostics::JellyfishDiagnostics;
-pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
-pub use geometry::{JellyfishGeometry, WorldSurfaces};
-pub use material::{
-    GLOW_RADIANCE, JellyfishMaterials, SpeciesMaterials, bell_material, glow_material,
-    tentacle_material,
+pub use schedule::{JellyfishSchedulePlugin, JellyfishSystems};
+pub use settings::{DetailLevels, JellyfishSettings, SurfaceMode};
+pub use slice::{
+    JellyfishSlice, JellyfishStarted, SlicePlugin, SliceRecovered, StrokeStarted, Tier,
 };
-pub use pattern::{BellPatterns, PatternImages, pattern_images};
-pub use prepare::NEW_SLICES_PER_FRAME;
-pub use settings::{JellyfishSettings, SurfaceMode};
-pub use steering::{Steering, SteeringTarget};
-pub use surface::{
-    ShapeBuffers, SurfaceExtension, SurfaceMaterial, SurfaceMaterials, SurfacePath,
-    device_supports_templates,
-};
-pub use tank::{Impulse, TankWater};
-pub use water::{AmbientWater, SampledWater, WaterField};
+pub use species_asset::{SpeciesAssetPlugin, SpeciesLoader, SpeciesRejected};
+pub use swimming::{Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin};
+pub use tank::{Impulse, TankWater, TankWaterPlugin};
+pub use water::{AmbientWater, SampledWater, WaterField, WaterPlugin};
 
-use bevy::asset::{AssetEventSystems, AssetTrackingSystems};
+use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
-use bevy::transform::TransformSystems;
 
-/// Adds jellyfish to an app. Settings live in the [`JellyfishSettings`] resource; one the
-/// app already has is kept.
+/// Every part of the plugin, in the order they build. `JellyfishPlugins::default()`
+/// gives them all with default settings; `.build().disable::<…>()` leaves one out.
+#[derive(Clone, Debug, Default)]
+pub struct JellyfishPlugins {
+    /// The settings inserted unless the app already has a `JellyfishSettings`.
+    pub settings: JellyfishSettings,
+}
+
+impl PluginGroup for JellyfishPlugins {
+    fn build(self) -> PluginGroupBuilder {
+        PluginGroupBuilder::start::<Self>()
+            .add(JellyfishSchedulePlugin {
+                settings: self.settings,
+            })
+            .add(SpeciesAssetPlugin)
+            .add(WaterPlugin)
+            .add(SwimmingPlugin)
+            .add(InterpolationPlugin)
+            .add(SlicePlugin)
+            .add(TankWaterPlugin)
+            .add(JellyfishRenderPlugin)
+            .add(JellyfishMaterialPlugin)
+            .add(DetailPlugin)
+            .add(JellyfishDiagnosticsPlugin)
+    }
+}
+
+/// Adds jellyfish to an app: all of [`JellyfishPlugins`] in one line. Settings live in
+/// the [`JellyfishSettings`] resource; one the app already has is kept.
 #[derive(Clone, Debug, Default)]
 pub struct JellyfishPlugin {
     /// The settings inserted unless the app already has a `JellyfishSettings`.
     pub settings: JellyfishSettings,
 }
 
-/// The plugin's systems, in the order they run within a frame. Order your own systems
-/// against these (e.g. steering before `StepSlices`, reading meshes after `RebuildMeshes`).
-#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum JellyfishSystems {
-    /// PreUpdate: create slices for new jellyfish, apply species and settings edits,
-    /// choose levels of detail.
-    Prepare,
-    /// PostUpdate: step the slices by the frame's virtual time, in parallel over jellyfish.
-    StepSlices,
-    /// PostUpdate: move each jellyfish along its axis, blended between fixed steps.
-    WriteTransforms,
-    /// PostUpdate: rebuild meshes in place, before bounds and render extraction.
-    RebuildMeshes,
-}
-
 impl Plugin for JellyfishPlugin {
     fn build(&self, app: &mut App) {
-        if !app.world().contains_resource::<JellyfishSettings>() {
-            app.insert_resource(self.settings.clone());
-        }
-        app.register_type::<JellyfishSettings>()
-            .register_type::<Jellyfish>()
-            .register_type::<Steering>()
-            .register_type::<Resting>()
-            .register_type::<JellyfishSlice>()
-            .register_type::<JellyfishTentacles>()
-            .register_type::<JellyfishGlow>()
-            .register_type::<SwimMotion>()
-            .register_type::<AmbientWater>()
-            .register_type::<TankWater>()
-            .register_type::<ShapeBuffers>()
-            .register_type::<SurfacePath>()
-            .register_type::<JellyfishMeshes>()
-            .register_type::<JellyfishStarted>()
-            .register_type::<StrokeStarted>()
-            .register_type::<SliceRecovered>()
-            .add_plugins((
-                asset::plugin,
-                diagnostics::plugin,
-                material::plugin,
-                pattern::plugin,
-                prepare::plugin,
-                detail::plugin,
-                step::plugin,
-                motion::plugin,
-                meshing::plugin,
-                surface::plugin,
-            ))
-            .configure_sets(
-                PreUpdate,
-                JellyfishSystems::Prepare.after(AssetTrackingSystems),
-            )
-            .configure_sets(
-                PostUpdate,
-                (
-                    JellyfishSystems::StepSlices,
-                    JellyfishSystems::WriteTransforms,
-                    JellyfishSystems::RebuildMeshes,
-                )
-                    .chain()
-                    .before(TransformSystems::Propagate)
-                    .before(AssetEventSystems),
-            );
+        app.add_plugins(JellyfishPlugins {
+            settings: self.settings.clone(),
+        });
     }
 }

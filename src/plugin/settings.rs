@@ -1,9 +1,9 @@
 //! [`JellyfishSettings`]: how every jellyfish is drawn, and how many are simulated in
 //! full. A slice's step, grid and numerics belong to its species; the levels of detail
 //! only choose which jellyfish replay their species' recorded stroke instead (see
-//! [`DetailLevels`]).
+//! [`DetailLevels`]). The tuning of every part lives here, in one resource, so the parts
+//! read it without reaching into each other.
 
-use super::detail::DetailLevels;
 use crate::shape::Resolution;
 use crate::species::Species;
 use bevy::prelude::*;
@@ -50,5 +50,40 @@ impl JellyfishSettings {
     /// The resolution a species is drawn at: its own, scaled by `mesh_resolution_scale`.
     pub fn resolution(&self, species: &Species) -> Resolution {
         Resolution::scaled(species, self.mesh_resolution_scale)
+    }
+}
+
+/// How many jellyfish get each tier, and from what size on screen. The largest on screen
+/// (bell diameter over the view's height, for the first active camera) are near, the next
+/// mid, the rest far; jellyfish no camera sees rank last. With no camera, the lowest
+/// entities are nearest.
+#[derive(Clone, Debug, PartialEq, Reflect)]
+pub struct DetailLevels {
+    /// At most this many near jellyfish.
+    pub near: usize,
+    /// At most this many mid jellyfish.
+    pub mid: usize,
+    /// Smallest size on screen for near (fraction of the view's height).
+    pub near_size: f32,
+    /// Smallest size on screen for mid.
+    pub mid_size: f32,
+    /// A jellyfish keeps its tier until another outranks it by this fraction of its size,
+    /// so one at the boundary does not flicker between tiers.
+    pub hysteresis: f32,
+    /// At most this many jellyfish move to a nearer tier in one frame (each resumes a
+    /// slice: a copy and up to three steps).
+    pub promotions_per_frame: usize,
+}
+
+impl Default for DetailLevels {
+    fn default() -> Self {
+        Self {
+            near: 100,
+            mid: 24,
+            near_size: 0.0,
+            mid_size: 0.0,
+            hysteresis: 0.25,
+            promotions_per_frame: 12,
+        }
     }
 }

@@ -11,6 +11,8 @@ pub mod muscle;
 pub mod oral_arms;
 pub mod pressure;
 mod slice;
+pub mod tank;
+pub(crate) mod trilinear;
 
 pub use cycle::CycleCache;
 pub use slice::SliceSim;

@@ -71,16 +71,7 @@ impl BellPatterns {
     }
 }
 
-pub(super) fn plugin(app: &mut App) {
-    app.init_resource::<BellPatterns>()
-        .register_type::<BellPatterns>()
-        .add_systems(
-            PostUpdate,
-            repaint_edited.run_if(resource_exists::<Assets<Image>>),
-        );
-}
-
-fn repaint_edited(
+pub(super) fn repaint_edited(
     mut events: MessageReader<AssetEvent<Species>>,
     species: Res<Assets<Species>>,
     mut patterns: ResMut<BellPatterns>,

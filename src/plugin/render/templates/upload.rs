@@ -5,10 +5,9 @@
 //! re-tag the others. The buffers grow by a quarter when they must, never shrink, and keep
 //! their size between frames so Bevy writes them in place; a growth rebinds the materials.
 
-use super::SurfacePath;
 use super::material::SurfaceMaterial;
-use crate::plugin::components::JellyfishMeshes;
-use crate::plugin::diagnostics::JellyfishTimings;
+use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
+use crate::plugin::timings::JellyfishTimings;
 use bevy::asset::RenderAssetUsages;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;

@@ -5,14 +5,28 @@
 //! relative to that water (what its slice computes), so a uniform current adds exactly
 //! itself; it is turned by half the local vorticity (a small body in a shear spins with
 //! the fluid). The slice keeps simulating the water around the bell in the bell's own
-//! frame: shear along the axis is not fed into it as inflow (see the crate's notes).
+//! frame: shear along the axis is not fed into it as inflow.
 
+use crate::sim::trilinear::Trilinear;
 use bevy::prelude::*;
 use std::sync::Arc;
 
+/// The water every jellyfish swims in: inserts still [`AmbientWater`] unless the app has
+/// its own.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WaterPlugin;
+
+impl Plugin for WaterPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<AmbientWater>()
+            .register_type::<AmbientWater>();
+    }
+}
+
 /// A velocity field in world units per second.
 pub trait WaterField: Send + Sync + 'static {
-    /// The water's velocity at `point` (world) at `time` (s of `Time<Fixed>`).
+    /// The water's velocity at `point` (world) at `time` (s of `Time<Virtual>`: the
+    /// stepping reads it at the end of each slice step).
     fn velocity(&self, point: Vec3, time: f64) -> Vec3;
 
     /// The vorticity (curl) at `point`, 1/s: by central differences `spacing` apart, unless
@@ -109,30 +123,18 @@ pub struct SampledWater {
 }
 
 impl SampledWater {
-    fn at(&self, i: u32, j: u32, k: u32) -> Vec3 {
-        let s = self.size;
-        self.velocities[((k * s.y + j) * s.x + i) as usize]
+    fn grid(&self) -> Trilinear {
+        Trilinear {
+            origin: self.origin,
+            spacing: self.spacing,
+            size: self.size,
+        }
     }
 }
 
 impl WaterField for SampledWater {
     fn velocity(&self, point: Vec3, _: f64) -> Vec3 {
-        let s = self.size;
-        if s.min_element() == 0 || self.velocities.len() < (s.x * s.y * s.z) as usize {
-            return Vec3::ZERO;
-        }
-        let g =
-            ((point - self.origin) / self.spacing.max(1e-9)).clamp(Vec3::ZERO, (s - 1).as_vec3());
-        let g = if g.is_finite() { g } else { Vec3::ZERO };
-        let i0 = g.floor().as_uvec3().min((s - 1).max(UVec3::ZERO));
-        let i1 = (i0 + 1).min(s - 1);
-        let f = g - i0.as_vec3();
-        let lerp = |a: Vec3, b: Vec3, t: f32| a + (b - a) * t;
-        let x00 = lerp(self.at(i0.x, i0.y, i0.z), self.at(i1.x, i0.y, i0.z), f.x);
-        let x10 = lerp(self.at(i0.x, i1.y, i0.z), self.at(i1.x, i1.y, i0.z), f.x);
-        let x01 = lerp(self.at(i0.x, i0.y, i1.z), self.at(i1.x, i0.y, i1.z), f.x);
-        let x11 = lerp(self.at(i0.x, i1.y, i1.z), self.at(i1.x, i1.y, i1.z), f.x);
-        lerp(lerp(x00, x10, f.y), lerp(x01, x11, f.y), f.z)
+        self.grid().sample(&self.velocities, point)
     }
 }
 

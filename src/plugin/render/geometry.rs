@@ -5,8 +5,9 @@
 //! state, resolution, seed and time the frame was drawn with; it is the CPU mesh the
 //! template path is tested against.
 
-use super::components::{JellyfishMeshes, JellyfishSlice};
-use super::settings::JellyfishSettings;
+use super::meshes::JellyfishMeshes;
+use crate::plugin::settings::JellyfishSettings;
+use crate::plugin::slice::JellyfishSlice;
 use crate::shape::{JellyMesh, SurfaceBuffers, build_at};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -53,7 +54,7 @@ pub struct WorldSurfaces {
 
 impl JellyfishGeometry<'_, '_> {
     /// The surfaces as drawn in the last frame (this frame's, from a system after
-    /// [`JellyfishSystems::RebuildMeshes`](super::JellyfishSystems)). `None` for an entity
+    /// [`JellyfishSystems::RebuildMeshes`](crate::plugin::JellyfishSystems)). `None` for an entity
     /// that is not a jellyfish or has not been drawn yet.
     pub fn surfaces(&self, entity: Entity) -> Option<WorldSurfaces> {
         let (slice, meshes, transform) = self.jellyfish.get(entity).ok()?;

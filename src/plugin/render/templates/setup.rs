@@ -1,13 +1,13 @@
 //! Puts each jellyfish on its drawing path: the shared template meshes and a slot, or its
 //! own CPU meshes; moves it when the path or its resolution changes.
 
-use super::SurfacePath;
 use super::material::SurfaceMaterial;
 use super::upload::SurfaceSlots;
-use crate::plugin::components::{JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
-use crate::plugin::material::JellyfishMaterials;
-use crate::plugin::meshing::{glow_layer, new_mesh};
+use crate::plugin::render::looks::SpeciesMaterials;
+use crate::plugin::render::meshes::{JellyfishMeshes, JellyfishTentacles, SurfacePath};
+use crate::plugin::render::rebuild::{glow_layer, new_mesh};
 use crate::plugin::settings::JellyfishSettings;
+use crate::plugin::slice::JellyfishSlice;
 use crate::shape::{JellyMesh, Resolution, SliceOutline, build_at};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::visibility::NoAutoAabb;
@@ -76,19 +76,20 @@ pub(crate) fn set_up(
     mut templates: ResMut<Templates>,
     mut slots: ResMut<SurfaceSlots>,
     mut removed: RemovedComponents<JellyfishMeshes>,
-    own: Res<JellyfishMaterials>,
+    own: Option<Res<SpeciesMaterials<StandardMaterial>>>,
     mut assets: ResMut<Assets<Mesh>>,
 ) {
     for entity in removed.read() {
         slots.give_back(entity);
     }
     let global = path.map_or(SurfacePath::CpuMeshes, |p| *p);
+    let own = own.as_deref();
     for (entity, slice, mut meshes, material) in &mut jellyfish {
         if !slice.started() {
             continue;
         }
         // A material of the game's own is a StandardMaterial: it needs real meshes.
-        let custom = material.is_some_and(|m| !own.is_ours(&m.0));
+        let custom = material.is_some_and(|m| !is_ours(own, &m.0));
         let wanted = if custom {
             SurfacePath::CpuMeshes
         } else {
@@ -101,7 +102,7 @@ pub(crate) fn set_up(
                 &mut meshes,
                 &mut slots,
                 material,
-                &own,
+                own,
             );
             meshes.path = Some(wanted);
         }
@@ -169,14 +170,14 @@ fn tear_down(
     meshes: &mut JellyfishMeshes,
     slots: &mut SurfaceSlots,
     material: Option<&MeshMaterial3d<StandardMaterial>>,
-    own: &JellyfishMaterials,
+    own: Option<&SpeciesMaterials<StandardMaterial>>,
 ) {
     if meshes.path.is_none() {
         return;
     }
     let mut e = commands.entity(entity);
     e.remove::<(Mesh3d, MeshTag, MeshMaterial3d<SurfaceMaterial>)>();
-    if material.is_some_and(|m| own.is_ours(&m.0)) {
+    if material.is_some_and(|m| is_ours(own, &m.0)) {
         e.remove::<MeshMaterial3d<StandardMaterial>>();
     }
     for child in [meshes.tentacle_entity.take(), meshes.glow_entity.take()]
@@ -191,4 +192,12 @@ fn tear_down(
         bounds: meshes.bounds,
         ..default()
     };
+}
+
+/// Whether our material plugin made `material` (none is ours without it).
+fn is_ours(
+    own: Option<&SpeciesMaterials<StandardMaterial>>,
+    material: &Handle<StandardMaterial>,
+) -> bool {
+    own.is_some_and(|o| o.is_ours(material))
 }

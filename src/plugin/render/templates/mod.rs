@@ -7,7 +7,7 @@
 //! used for the prepass and shadows) places each vertex. CPU meshes remain: they are the
 //! reference the shader is tested against, the fallback where a device cannot read storage
 //! buffers in vertex shaders (WebGL2), what a custom `StandardMaterial` needs, and what
-//! [`JellyfishGeometry`](super::JellyfishGeometry) gives for picking and colliders.
+//! [`JellyfishGeometry`](crate::plugin::JellyfishGeometry) gives for picking and colliders.
 //!
 //! [`MeshTag`]: bevy::mesh::MeshTag
 
@@ -15,44 +15,36 @@ mod material;
 mod setup;
 mod upload;
 
-pub use material::{SurfaceExtension, SurfaceMaterial, SurfaceMaterials};
+pub use material::{SurfaceExtension, SurfaceMaterial};
 pub use upload::ShapeBuffers;
 
 pub(super) use setup::set_up;
 pub(super) use upload::upload;
 
-use super::JellyfishSystems;
-use super::settings::{JellyfishSettings, SurfaceMode};
-use bevy::pbr::{MaterialPlugin, PbrPlugin};
+use super::meshes::SurfacePath;
+use crate::plugin::schedule::JellyfishSystems;
+use crate::plugin::settings::{JellyfishSettings, SurfaceMode};
+use bevy::pbr::PbrPlugin;
 use bevy::prelude::*;
 use bevy::render::render_resource::DownlevelFlags;
 use bevy::render::renderer::{RenderAdapter, RenderDevice};
 use bevy::render::storage::ShaderBuffer;
 
-/// How this app draws jellyfish surfaces, resolved each frame from
-/// [`JellyfishSettings::surfaces`] and what the device can do.
-#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq, Reflect)]
-pub enum SurfacePath {
-    /// Shared template meshes shaped on the GPU.
-    Templates,
-    /// Each jellyfish's own meshes, rebuilt on the CPU.
-    CpuMeshes,
-}
-
-pub(super) fn plugin(app: &mut App) {
-    // Only where the app renders; add `JellyfishPlugin` after `DefaultPlugins`.
+/// The shader, the shared meshes and the slots; each frame's path.
+pub(super) fn build(app: &mut App) {
+    // Only where the app renders; add the plugins after `DefaultPlugins`.
     if app.is_plugin_added::<PbrPlugin>() {
         bevy::asset::embedded_asset!(app, "surface.wgsl");
-        app.add_plugins(MaterialPlugin::<SurfaceMaterial>::default());
     }
     app.init_resource::<setup::Templates>()
         .init_resource::<upload::SurfaceSlots>()
-        .add_systems(PreUpdate, resolve_path.in_set(JellyfishSystems::Prepare))
-        .add_plugins(material::plugin);
+        .register_type::<ShapeBuffers>()
+        .register_type::<SurfacePath>()
+        .add_systems(PreUpdate, resolve_path.in_set(JellyfishSystems::Prepare));
 }
 
 /// Whether a device can read the shape buffers in its vertex shaders.
-pub fn device_supports_templates(device: &RenderDevice, adapter: &RenderAdapter) -> bool {
+pub(crate) fn device_supports_templates(device: &RenderDevice, adapter: &RenderAdapter) -> bool {
     adapter
         .get_downlevel_capabilities()
         .flags

@@ -1,13 +1,13 @@
-//! Meshes rebuilt every frame from the slice, blended between fixed steps, written into
-//! the same mesh assets in place; skipped for jellyfish no camera sees (see
-//! [`culling`](super::culling)).
+//! Surfaces rebuilt every frame from the slice, blended between fixed steps: CPU meshes
+//! written into the same mesh assets in place, or packed shapes for the templates;
+//! skipped for jellyfish no camera sees (see [`culling`](super::culling)).
 
-use super::JellyfishSystems;
-use super::components::{JellyfishGlow, JellyfishMeshes, JellyfishSlice, JellyfishTentacles};
 use super::culling::{active_frusta, seen, slice_bounds};
-use super::diagnostics::JellyfishTimings;
-use super::settings::JellyfishSettings;
-use super::surface::{self, SurfacePath};
+use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+use crate::plugin::interpolation::SliceHistory;
+use crate::plugin::settings::JellyfishSettings;
+use crate::plugin::slice::JellyfishSlice;
+use crate::plugin::timings::JellyfishTimings;
 use crate::shape::{self, SurfaceBuffers};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
@@ -16,25 +16,16 @@ use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use std::time::Instant;
 
-pub(super) fn plugin(app: &mut App) {
-    app.add_systems(
-        PostUpdate,
-        (
-            surface::set_up,
-            build_buffers,
-            write_meshes,
-            surface::upload,
-        )
-            .chain()
-            .in_set(JellyfishSystems::RebuildMeshes),
-    );
-}
-
 /// The CPU-heavy half, in parallel: blend the steps around the frame's time, bound them,
 /// and build the surfaces (CPU meshes) or pack the shapes (templates) of the jellyfish a
 /// camera sees.
-fn build_buffers(
-    mut jellyfish: Query<(&JellyfishSlice, &mut JellyfishMeshes, &GlobalTransform)>,
+pub(super) fn build_buffers(
+    mut jellyfish: Query<(
+        &JellyfishSlice,
+        &SliceHistory,
+        &mut JellyfishMeshes,
+        &GlobalTransform,
+    )>,
     cameras: Query<(&Camera, &Frustum)>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
@@ -42,13 +33,13 @@ fn build_buffers(
     let frusta = active_frusta(&cameras);
     jellyfish
         .par_iter_mut()
-        .for_each(|(slice, mut meshes, transform)| {
+        .for_each(|(slice, history, mut meshes, transform)| {
             if !slice.started() {
                 return;
             }
             let start = Instant::now();
             let meshes = &mut *meshes;
-            let Some((a, b, t)) = slice.history.bracket(slice.display_time()) else {
+            let Some((a, b, t)) = history.shown() else {
                 return;
             };
             meshes.blended.blend(a, b, t);
@@ -86,7 +77,7 @@ fn build_buffers(
 
 /// The serial half: copy the buffers into the mesh assets (creating them the first time).
 /// An empty surface (a species without tentacles) is hidden, never handed to Bevy.
-fn write_meshes(
+pub(super) fn write_meshes(
     mut commands: Commands,
     mut jellyfish: Query<(Entity, &mut JellyfishMeshes, Option<&mut Aabb>)>,
     mut child_bounds: Query<&mut Aabb, (ChildPart, Without<JellyfishMeshes>)>,

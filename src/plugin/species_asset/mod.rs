@@ -1,6 +1,7 @@
 //! [`Species`] as a Bevy asset: a RON loader that validates, and a message when a species
 //! is refused (a bad file or a bad live edit), so jellyfish keep their last valid one.
 
+use super::schedule::JellyfishSystems;
 use crate::species::{Species, SpeciesError};
 use bevy::asset::{
     Asset, AssetLoadError, AssetLoadFailedEvent, AssetLoader, LoadContext, UntypedAssetId,
@@ -84,10 +85,7 @@ impl Refusals {
 }
 
 /// A species that changed (an edit, a good reload, a removal) may be refused anew.
-pub(super) fn forget_changed(
-    mut events: MessageReader<AssetEvent<Species>>,
-    mut refusals: ResMut<Refusals>,
-) {
+fn forget_changed(mut events: MessageReader<AssetEvent<Species>>, mut refusals: ResMut<Refusals>) {
     for event in events.read() {
         if let AssetEvent::Added { id } | AssetEvent::Modified { id } | AssetEvent::Removed { id } =
             event
@@ -97,18 +95,25 @@ pub(super) fn forget_changed(
     }
 }
 
-pub(super) fn plugin(app: &mut App) {
-    app.init_asset::<Species>()
-        .register_asset_reflect::<Species>()
-        .init_asset_loader::<SpeciesLoader>()
-        .add_message::<SpeciesRejected>()
-        .init_resource::<Refusals>()
-        .add_systems(
-            PreUpdate,
-            (forget_changed, report_failed_loads)
-                .chain()
-                .in_set(super::JellyfishSystems::Prepare),
-        );
+/// [`Species`] as an asset: `*.species.ron` files loaded and validated, and
+/// [`SpeciesRejected`] sent once per refusal.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SpeciesAssetPlugin;
+
+impl Plugin for SpeciesAssetPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_asset::<Species>()
+            .register_asset_reflect::<Species>()
+            .init_asset_loader::<SpeciesLoader>()
+            .add_message::<SpeciesRejected>()
+            .init_resource::<Refusals>()
+            .add_systems(
+                PreUpdate,
+                (forget_changed, report_failed_loads)
+                    .chain()
+                    .in_set(JellyfishSystems::LoadSpecies),
+            );
+    }
 }
 
 /// Bevy logs the loader's error; this says what happens next and tells listeners.

@@ -1,34 +1,29 @@
-//! [`TankWater`]: a coarse 3D stable-fluids grid over a box (a tank), stirred by the game
-//! and by the jellyfish's own jets, that becomes the [`AmbientWater`] every jellyfish
-//! swims in.
+//! A coarse 3D stable-fluids grid over a box: the water of a whole tank, stirred by pushes
+//! ([`Impulse`]) and coming slowly to rest.
 //!
-//! One step per fixed tick, Stam's recipe on cell-centred velocities: apply the stirs and
-//! the jets gathered since the last tick, advect (semi-Lagrangian), let the water slowly
-//! come to rest, and project (Gauss–Seidel on the pressure, closed free-slip walls).
-//! Everything is summed in a fixed order (jets by entity), so a replay is the same water.
+//! One step, Stam's recipe on cell-centred velocities: apply the pushes gathered since the
+//! last step, advect (semi-Lagrangian), let the water come to rest a little, and project
+//! (Gauss–Seidel on the pressure, closed free-slip walls). Pushes are applied in the order
+//! they came, so the same pushes give the same water.
 
-use super::water::{AmbientWater, SampledWater};
-use bevy::prelude::*;
+use super::trilinear::Trilinear;
+use glam::{UVec3, Vec3};
 
 /// Gauss–Seidel sweeps of the pressure solve: the grid is coarse and the water slow, and
-/// what is left of the divergence is damped away within a few ticks.
+/// what is left of the divergence is damped away within a few steps.
 const PRESSURE_SWEEPS: usize = 20;
 
-/// The tank's water, as a game adds it: `app.insert_resource(TankWater::new(min, max, cell))`.
-#[derive(Resource, Clone, Debug, Reflect)]
-#[reflect(Resource)]
-pub struct TankWater {
-    /// The tank's lower corner, world.
+/// The tank's water: velocities at cell centres of a box.
+#[derive(Clone, Debug, Default)]
+pub struct TankFluid {
+    /// The tank's lower corner.
     pub min: Vec3,
-    /// Cell size, world units.
+    /// Cell size.
     pub cell: f32,
     /// Cells along x, y, z.
     pub size: UVec3,
     /// How quickly the water comes back to rest, 1/s.
     pub damping: f32,
-    /// How much of a jellyfish's surge speed its jet gives the water behind it (0: the
-    /// jellyfish do not stir the water).
-    pub jet_strength: f32,
     velocity: Vec<Vec3>,
     scratch: Vec<Vec3>,
     pressure: Vec<f32>,
@@ -36,19 +31,19 @@ pub struct TankWater {
     pending: Vec<Impulse>,
 }
 
-/// A push given to the water: within `radius` of `at`, towards `velocity` (world units
-/// per second), smoothly less towards the edge.
-#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+/// A push given to the water: within `radius` of `at`, towards `velocity`, smoothly less
+/// towards the edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Impulse {
-    /// Centre, world.
+    /// Centre.
     pub at: Vec3,
-    /// Reach, world units.
+    /// Reach.
     pub radius: f32,
-    /// Velocity given at the centre, world units per second.
+    /// Velocity given at the centre.
     pub velocity: Vec3,
 }
 
-impl TankWater {
+impl TankFluid {
     /// Still water filling the box from `min` to `max` in cells of about `cell`.
     pub fn new(min: Vec3, max: Vec3, cell: f32) -> Self {
         let cell = cell.max(1e-3);
@@ -59,7 +54,6 @@ impl TankWater {
             cell,
             size,
             damping: 0.15,
-            jet_strength: 0.5,
             velocity: vec![Vec3::ZERO; count],
             scratch: vec![Vec3::ZERO; count],
             pressure: vec![0.0; count],
@@ -68,8 +62,8 @@ impl TankWater {
         }
     }
 
-    /// Pushes the water at `at` (world) within `radius` towards `velocity`; applied at
-    /// the next tick.
+    /// Pushes the water at `at` within `radius` towards `velocity`; applied at the next
+    /// step. A non-finite or empty push is ignored.
     pub fn stir(&mut self, at: Vec3, radius: f32, velocity: Vec3) {
         if at.is_finite() && velocity.is_finite() && radius > 0.0 {
             self.pending.push(Impulse {
@@ -80,6 +74,42 @@ impl TankWater {
         }
     }
 
+    /// The cell centres as a sampling grid.
+    pub(crate) fn grid(&self) -> Trilinear {
+        Trilinear {
+            origin: self.min + Vec3::splat(0.5 * self.cell),
+            spacing: self.cell,
+            size: self.size,
+        }
+    }
+
+    /// The velocity of every cell, x fastest, then y, then z (see [`Self::grid`]).
+    pub fn velocities(&self) -> &[Vec3] {
+        &self.velocity
+    }
+
+    /// The water's velocity at a point (trilinear; held at the walls).
+    pub fn velocity_at(&self, point: Vec3) -> Vec3 {
+        self.grid().sample(&self.velocity, point)
+    }
+
+    /// Largest speed in the tank.
+    pub fn speed_max(&self) -> f32 {
+        self.velocity.iter().map(|v| v.length()).fold(0.0, f32::max)
+    }
+
+    /// One step of `dt` seconds: pushes, advection, rest, projection.
+    pub fn step(&mut self, dt: f32) {
+        if dt.is_nan() || dt <= 0.0 {
+            return;
+        }
+        self.push();
+        self.advect(dt);
+        self.come_to_rest(dt);
+        self.walls();
+        self.project();
+    }
+
     fn index(&self, i: u32, j: u32, k: u32) -> usize {
         ((k * self.size.y + j) * self.size.x + i) as usize
     }
@@ -88,48 +118,7 @@ impl TankWater {
         self.min + (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * self.cell
     }
 
-    /// The water's velocity at a world point (trilinear; held at the walls).
-    pub fn velocity_at(&self, point: Vec3) -> Vec3 {
-        self.sampled().velocity_of(&self.velocity, point)
-    }
-
-    fn sampled(&self) -> Grid {
-        Grid {
-            origin: self.min + Vec3::splat(0.5 * self.cell),
-            cell: self.cell,
-            size: self.size,
-        }
-    }
-
-    /// The water as a field for the jellyfish.
-    pub fn snapshot(&self) -> SampledWater {
-        SampledWater {
-            origin: self.min + Vec3::splat(0.5 * self.cell),
-            spacing: self.cell,
-            size: self.size,
-            velocities: self.velocity.clone(),
-        }
-    }
-
-    /// Largest speed in the tank, world units per second.
-    pub fn speed_max(&self) -> f32 {
-        self.velocity.iter().map(|v| v.length()).fold(0.0, f32::max)
-    }
-
-    /// One tick: pushes, advection, rest, projection.
-    pub fn step(&mut self, dt: f32) {
-        if dt.is_nan() || dt <= 0.0 {
-            return;
-        }
-        self.push();
-        self.advect(dt);
-        let keep = 1.0 / (1.0 + self.damping * dt);
-        self.velocity.iter_mut().for_each(|v| *v *= keep);
-        self.walls();
-        self.project();
-    }
-
-    /// Applies the pending impulses, in the order they came.
+    /// Applies the pending pushes, in the order they came.
     fn push(&mut self) {
         let pending = std::mem::take(&mut self.pending);
         for imp in &pending {
@@ -159,18 +148,24 @@ impl TankWater {
     }
 
     fn advect(&mut self, dt: f32) {
-        let grid = self.sampled();
+        let grid = self.grid();
         let s = self.size;
         for k in 0..s.z {
             for j in 0..s.y {
                 for i in 0..s.x {
                     let idx = self.index(i, j, k);
                     let back = self.centre(i, j, k) - self.velocity[idx] * dt;
-                    self.scratch[idx] = grid.velocity_of(&self.velocity, back);
+                    self.scratch[idx] = grid.sample(&self.velocity, back);
                 }
             }
         }
         std::mem::swap(&mut self.velocity, &mut self.scratch);
+    }
+
+    /// The water slows by `1 / (1 + damping·dt)`: implicit, so never past rest.
+    fn come_to_rest(&mut self, dt: f32) {
+        let keep = 1.0 / (1.0 + self.damping * dt);
+        self.velocity.iter_mut().for_each(|v| *v *= keep);
     }
 
     /// Closed, free-slip walls: no velocity through them.
@@ -195,7 +190,9 @@ impl TankWater {
         }
     }
 
-    fn project(&mut self) {
+    /// The divergence of the velocity at every cell (central differences, no flow through
+    /// the walls), into `self.divergence`.
+    fn measure_divergence(&mut self) {
         let s = self.size;
         let h = self.cell;
         let at = |v: &[Vec3], i: i64, j: i64, k: i64| -> Vec3 {
@@ -216,10 +213,17 @@ impl TankWater {
                         / (2.0 * h);
                     let idx = self.index(i as u32, j as u32, k as u32);
                     self.divergence[idx] = div;
-                    self.pressure[idx] = 0.0;
                 }
             }
         }
+    }
+
+    /// Removes the divergent part: solves for the pressure and subtracts its gradient.
+    fn project(&mut self) {
+        let s = self.size;
+        let h = self.cell;
+        self.measure_divergence();
+        self.pressure.iter_mut().for_each(|p| *p = 0.0);
         let p_at = |p: &[f32], i: i64, j: i64, k: i64, here: f32| -> f32 {
             if i < 0 || j < 0 || k < 0 || i >= s.x as i64 || j >= s.y as i64 || k >= s.z as i64 {
                 here // Neumann: no pressure gradient through a wall.
@@ -264,53 +268,12 @@ impl TankWater {
     }
 }
 
-/// Trilinear sampling on cell centres, held at the edges.
-struct Grid {
-    origin: Vec3,
-    cell: f32,
-    size: UVec3,
-}
-
-impl Grid {
-    fn velocity_of(&self, field: &[Vec3], point: Vec3) -> Vec3 {
-        let s = self.size;
-        let g = ((point - self.origin) / self.cell).clamp(Vec3::ZERO, (s - 1).as_vec3());
-        let g = if g.is_finite() { g } else { Vec3::ZERO };
-        let i0 = g.floor().as_uvec3().min(s - 1);
-        let i1 = (i0 + 1).min(s - 1);
-        let f = g - i0.as_vec3();
-        let at = |i: u32, j: u32, k: u32| field[((k * s.y + j) * s.x + i) as usize];
-        let lerp = |a: Vec3, b: Vec3, t: f32| a + (b - a) * t;
-        let x00 = lerp(at(i0.x, i0.y, i0.z), at(i1.x, i0.y, i0.z), f.x);
-        let x10 = lerp(at(i0.x, i1.y, i0.z), at(i1.x, i1.y, i0.z), f.x);
-        let x01 = lerp(at(i0.x, i0.y, i1.z), at(i1.x, i0.y, i1.z), f.x);
-        let x11 = lerp(at(i0.x, i1.y, i1.z), at(i1.x, i1.y, i1.z), f.x);
-        lerp(lerp(x00, x10, f.y), lerp(x01, x11, f.y), f.z)
-    }
-}
-
-/// Steps the tank (if the app has one) and hands it to the jellyfish as their water.
-pub(super) fn step_tank(
-    tank: Option<ResMut<TankWater>>,
-    mut ambient: ResMut<AmbientWater>,
-    time: Res<Time<Fixed>>,
-    timings: Res<super::diagnostics::JellyfishTimings>,
-) {
-    let Some(mut tank) = tank else {
-        return;
-    };
-    let start = std::time::Instant::now();
-    tank.step(time.delta_secs());
-    *ambient = AmbientWater::field(tank.snapshot());
-    timings.add_water(start.elapsed());
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn tank() -> TankWater {
-        TankWater::new(Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 8.0, 4.0), 0.5)
+    fn tank() -> TankFluid {
+        TankFluid::new(Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 8.0, 4.0), 0.5)
     }
 
     #[test]
@@ -344,16 +307,52 @@ mod tests {
         }
     }
 
+    /// Root-mean-square divergence over the tank, 1/s.
+    fn divergence_rms(t: &mut TankFluid) -> f32 {
+        t.measure_divergence();
+        let sum: f32 = t.divergence.iter().map(|d| d * d).sum();
+        (sum / t.divergence.len() as f32).sqrt()
+    }
+
     #[test]
-    fn the_same_stirs_give_the_same_water() {
-        let run = || {
+    fn projection_takes_out_most_of_a_stirs_divergence() {
+        let mut t = tank();
+        t.stir(Vec3::new(0.5, 3.0, -0.5), 1.5, Vec3::new(1.0, 0.5, 0.0));
+        t.push();
+        t.walls();
+        let before = divergence_rms(&mut t);
+        t.project();
+        let after = divergence_rms(&mut t);
+        println!("rms divergence of a stir {before:.3} 1/s, projected {after:.3} 1/s");
+        assert!(before > 0.02, "a stir is divergent: {before}");
+        assert!(after < 0.4 * before, "projected {after}, before {before}");
+    }
+
+    #[test]
+    fn a_stir_mirrored_across_the_tank_gives_the_mirrored_water() {
+        let run = |sign: f32| {
             let mut t = tank();
-            for n in 0..20 {
-                t.stir(Vec3::new(0.1 * n as f32, 3.0, 0.0), 1.0, Vec3::Y);
+            t.stir(
+                Vec3::new(sign * 1.2, 3.0, 0.7),
+                1.5,
+                Vec3::new(sign, 0.4, 0.2),
+            );
+            for _ in 0..20 {
                 t.step(1.0 / 64.0);
             }
-            t.velocity.clone()
+            t
         };
-        assert_eq!(run(), run());
+        let (a, b) = (run(1.0), run(-1.0));
+        for p in [Vec3::new(1.0, 3.0, 0.5), Vec3::new(2.5, 4.0, -1.0)] {
+            let (va, vb) = (
+                a.velocity_at(p),
+                b.velocity_at(p * Vec3::new(-1.0, 1.0, 1.0)),
+            );
+            let mirrored = vb * Vec3::new(-1.0, 1.0, 1.0);
+            assert!(
+                (va - mirrored).length() < 1e-3 * (1.0 + va.length()),
+                "{va} against mirrored {mirrored}"
+            );
+        }
     }
 }

@@ -6,7 +6,7 @@
 //! a jellyfish outside every active camera's frustum; its slice keeps running, and the
 //! mesh is rebuilt the frame it comes back into view.
 
-use super::components::Snapshot;
+use crate::plugin::interpolation::Snapshot;
 use crate::species::Species;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::math::Affine3A;

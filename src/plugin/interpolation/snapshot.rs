@@ -1,0 +1,113 @@
+//! One slice step as the frames see it: shapes relative to the bell's centroid, the
+//! distance swum, the time and the jellyfish's pose.
+
+use crate::plugin::swimming::Pose;
+use crate::sim::cycle::CycleFrame;
+use crate::sim::{SliceSim, SliceView};
+use bevy::math::Vec2;
+
+/// One step's slice, relative to the bell's centroid so that the box following the bell
+/// never shows.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Snapshot {
+    pub bell: Vec<Vec2>,
+    pub tentacles: [Vec<Vec2>; 2],
+    pub oral_arms: [Vec<Vec2>; 2],
+    pub centroid: Vec2,
+    pub swim: f32,
+    /// Slice time of the state, s.
+    pub time: f64,
+    /// The jellyfish's pose in the world after the step.
+    pub pose: Pose,
+}
+
+impl Snapshot {
+    pub fn capture(&mut self, sim: &SliceSim) {
+        let view = sim.view();
+        let c = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
+        self.centroid = c;
+        self.bell.clear();
+        self.bell.extend(view.bell.iter().map(|p| *p - c));
+        let chains = view.tentacles.into_iter().chain(view.oral_arms);
+        for (out, chain) in self
+            .tentacles
+            .iter_mut()
+            .chain(&mut self.oral_arms)
+            .zip(chains)
+        {
+            out.clear();
+            out.extend(chain.iter().map(|p| *p - c));
+        }
+        self.swim = sim.swim_distance();
+        self.time = sim.clock().time();
+    }
+
+    /// `self = a + t·(b − a)`, point by point; `b` alone where the shapes differ.
+    pub fn blend(&mut self, a: &Snapshot, b: &Snapshot, t: f32) {
+        let lerp = |out: &mut Vec<Vec2>, a: &[Vec2], b: &[Vec2]| {
+            out.clear();
+            if a.len() == b.len() {
+                out.extend(a.iter().zip(b).map(|(a, b)| a.lerp(*b, t)));
+            } else {
+                out.extend_from_slice(b);
+            }
+        };
+        lerp(&mut self.bell, &a.bell, &b.bell);
+        for side in 0..2 {
+            lerp(
+                &mut self.tentacles[side],
+                &a.tentacles[side],
+                &b.tentacles[side],
+            );
+            lerp(
+                &mut self.oral_arms[side],
+                &a.oral_arms[side],
+                &b.oral_arms[side],
+            );
+        }
+        self.centroid = Vec2::ZERO;
+        self.swim = a.swim + t * (b.swim - a.swim);
+        self.time = a.time + t as f64 * (b.time - a.time);
+        self.pose = a.pose.blend(&b.pose, t);
+    }
+
+    /// The recorded cycle's frame, at slice time `time` and swim distance `swim`.
+    pub fn copy_frame(&mut self, frame: &CycleFrame, time: f64, swim: f32) {
+        self.bell.clone_from(&frame.bell);
+        let chains = frame.tentacles.iter().chain(&frame.oral_arms);
+        for (out, chain) in self
+            .tentacles
+            .iter_mut()
+            .chain(&mut self.oral_arms)
+            .zip(chains)
+        {
+            out.clone_from(chain);
+        }
+        self.centroid = frame.centroid;
+        self.swim = swim;
+        self.time = time;
+    }
+
+    /// `self += weight · other`, point by point, where the shapes match.
+    pub fn add(&mut self, other: &Snapshot, weight: f32) {
+        let add = |a: &mut Vec<Vec2>, b: &[Vec2]| {
+            if a.len() == b.len() {
+                a.iter_mut().zip(b).for_each(|(a, b)| *a += weight * *b);
+            }
+        };
+        add(&mut self.bell, &other.bell);
+        for side in 0..2 {
+            add(&mut self.tentacles[side], &other.tentacles[side]);
+            add(&mut self.oral_arms[side], &other.oral_arms[side]);
+        }
+    }
+
+    pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {
+        SliceView {
+            bell: &self.bell,
+            rest_bell,
+            tentacles: [&self.tentacles[0], &self.tentacles[1]],
+            oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! The recorded stroke cycles far jellyfish replay and nearer ones resume from.
+
+use crate::sim::cycle::CycleCache;
+use crate::species::Species;
+use bevy::prelude::*;
+use bevy::tasks::{AsyncComputeTaskPool, Task, block_on};
+use std::sync::Arc;
+
+/// The recorded cycle of every species (and its compact-box variant) a far or resuming
+/// jellyfish has needed. Recording one costs 10 to 60 cycles of one slice (0.1–0.4 s): it
+/// is done when first needed, in that frame, so which jellyfish are far is the same in
+/// every run; after an edit it is recorded in the background while far jellyfish play the
+/// old cycle, so dragging an editor slider does not stall the app.
+#[derive(Resource, Default, Reflect)]
+#[reflect(Resource, Default)]
+pub struct CycleCaches {
+    #[reflect(ignore)]
+    caches: Vec<Arc<CycleCache>>,
+    #[reflect(ignore)]
+    recording: Vec<(Species, Task<Option<CycleCache>>)>,
+}
+
+impl CycleCaches {
+    /// The cycle of `species`, recorded now if it is new. `None` for an invalid species.
+    pub fn get(&mut self, species: &Species) -> Option<Arc<CycleCache>> {
+        if let Some(c) = self.find(species) {
+            return Some(c);
+        }
+        let cache = Arc::new(CycleCache::record(species).ok()?);
+        self.caches.push(cache.clone());
+        Some(cache)
+    }
+
+    /// The cycle of `species` if recorded; if not, starts recording it in the background
+    /// (see [`Self::collect`]).
+    pub fn request(&mut self, species: &Species) -> Option<Arc<CycleCache>> {
+        if let Some(c) = self.find(species) {
+            return Some(c);
+        }
+        if !self.recording.iter().any(|(s, _)| s == species) {
+            let record = species.clone();
+            let task =
+                AsyncComputeTaskPool::get().spawn(async move { CycleCache::record(&record).ok() });
+            self.recording.push((species.clone(), task));
+        }
+        None
+    }
+
+    /// Keeps the cycles recorded in the background that have finished.
+    pub fn collect(&mut self) {
+        let (done, running): (Vec<_>, Vec<_>) = std::mem::take(&mut self.recording)
+            .into_iter()
+            .partition(|(_, task)| task.is_finished());
+        self.recording = running;
+        for (_, task) in done {
+            if let Some(cache) = block_on(task) {
+                self.caches.push(Arc::new(cache));
+            }
+        }
+    }
+
+    /// Whether any cycle is still being recorded in the background.
+    pub fn recording(&self) -> bool {
+        !self.recording.is_empty()
+    }
+
+    /// The cycle of `species`, if recorded.
+    pub fn find(&self, species: &Species) -> Option<Arc<CycleCache>> {
+        self.caches.iter().find(|c| c.species() == species).cloned()
+    }
+
+    /// Records the cycles of all of `species` not yet recorded, in parallel.
+    pub(super) fn prepare(&mut self, species: Vec<Species>) {
+        let mut missing: Vec<Species> = Vec::new();
+        for s in species {
+            if !self.caches.iter().any(|c| c.species() == &s) && !missing.contains(&s) {
+                missing.push(s);
+            }
+        }
+        let recorded = bevy::tasks::ComputeTaskPool::get().scope(|scope| {
+            for species in &missing {
+                scope.spawn(async move { CycleCache::record(species).ok() });
+            }
+        });
+        self.caches
+            .extend(recorded.into_iter().flatten().map(Arc::new));
+    }
+
+    /// Forgets cycles no jellyfish uses (edited species), keeping `in_use`.
+    /// Recordings of species no jellyfish has any more (an editor slider dragged on) are
+    /// dropped, which cancels them.
+    pub(super) fn retain(&mut self, in_use: &[Species]) {
+        self.caches.retain(|c| in_use.contains(c.species()));
+        self.recording.retain(|(s, _)| in_use.contains(s));
+    }
+
+    /// Whether the cycle of `species` is being recorded in the background.
+    pub fn is_recording(&self, species: &Species) -> bool {
+        self.recording.iter().any(|(s, _)| s == species)
+    }
+
+    /// Heap bytes held.
+    pub fn bytes(&self) -> usize {
+        self.caches.iter().map(|c| c.bytes()).sum()
+    }
+}

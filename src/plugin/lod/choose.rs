@@ -1,0 +1,200 @@
+//! Which tier each jellyfish should have: ranked by size on screen, within the counts of
+//! [`DetailLevels`], with hysteresis.
+
+use crate::plugin::render::JellyfishMeshes;
+use crate::plugin::settings::DetailLevels;
+use crate::plugin::slice::{JellyfishSlice, Tier};
+use bevy::prelude::*;
+
+/// A jellyfish's claim to detail: its size on screen, boosted for the tier it holds.
+pub(super) struct Rank {
+    pub entity: Entity,
+    pub size: f32,
+    pub tier: Tier,
+}
+
+/// Sizes on screen of every started jellyfish, from the first active camera.
+pub(super) fn screen_sizes<'a>(
+    cameras: &Query<(Entity, &Camera, &GlobalTransform, &Projection)>,
+    jellyfish: impl Iterator<
+        Item = (
+            Entity,
+            &'a JellyfishSlice,
+            Option<&'a JellyfishMeshes>,
+            &'a GlobalTransform,
+        ),
+    >,
+) -> Vec<Rank> {
+    let camera = cameras
+        .iter()
+        .filter(|(_, c, ..)| c.is_active)
+        .min_by_key(|(e, c, ..)| (c.order, *e));
+    jellyfish
+        .filter(|(_, slice, ..)| slice.started())
+        .map(|(entity, slice, meshes, transform)| {
+            let diameter = slice.species.diameter * transform.scale().max_element();
+            let unseen = meshes.is_some_and(|m| !m.seen() && m.bounds.is_some());
+            let size = match camera {
+                None => f32::INFINITY,
+                Some(_) if unseen => 0.0,
+                Some((_, _, eye, projection)) => {
+                    let distance = eye.translation().distance(transform.translation());
+                    match projection {
+                        Projection::Perspective(p) => {
+                            diameter / (2.0 * distance.max(1e-6) * (0.5 * p.fov).tan())
+                        }
+                        Projection::Orthographic(o) => diameter / o.area.height().max(1e-6),
+                        _ => 1.0,
+                    }
+                }
+            };
+            Rank {
+                entity,
+                size: if size.is_finite() || size == f32::INFINITY {
+                    size
+                } else {
+                    0.0
+                },
+                tier: slice.tier,
+            }
+        })
+        .collect()
+}
+
+/// The tier each jellyfish should have: the `near` largest (with hysteresis) of at least
+/// `near_size`, then the `mid` largest of the rest, then far.
+pub(super) fn choose(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
+    let boost = 1.0 + levels.hysteresis.max(0.0);
+    let mut chosen = Vec::with_capacity(ranks.len());
+    for (tier, budget, least) in [
+        (Tier::Near, levels.near, levels.near_size),
+        (Tier::Mid, levels.mid, levels.mid_size),
+    ] {
+        let claim = |r: &Rank| {
+            if r.tier <= tier {
+                r.size * boost
+            } else {
+                r.size
+            }
+        };
+        ranks.sort_by(|a, b| claim(b).total_cmp(&claim(a)).then(a.entity.cmp(&b.entity)));
+        let taken = ranks
+            .iter()
+            .take(budget)
+            .take_while(|r| claim(r) >= least)
+            .count();
+        chosen.extend(ranks.drain(..taken).map(|r| (r.entity, tier)));
+    }
+    chosen.extend(ranks.into_iter().map(|r| (r.entity, Tier::Far)));
+    chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ranks(sizes: &[(u32, f32, Tier)]) -> Vec<Rank> {
+        sizes
+            .iter()
+            .map(|&(i, size, tier)| Rank {
+                entity: Entity::from_raw_u32(i).unwrap(),
+                size,
+                tier,
+            })
+            .collect()
+    }
+
+    fn tier_of(chosen: &[(Entity, Tier)], i: u32) -> Tier {
+        chosen
+            .iter()
+            .find(|(e, _)| *e == Entity::from_raw_u32(i).unwrap())
+            .unwrap()
+            .1
+    }
+
+    #[test]
+    fn the_largest_are_near_within_the_budgets() {
+        let levels = DetailLevels {
+            near: 2,
+            mid: 1,
+            hysteresis: 0.0,
+            ..default()
+        };
+        let far = Tier::Far;
+        let chosen = choose(
+            ranks(&[(1, 0.1, far), (2, 0.5, far), (3, 0.3, far), (4, 0.2, far)]),
+            &levels,
+        );
+        assert_eq!(tier_of(&chosen, 2), Tier::Near);
+        assert_eq!(tier_of(&chosen, 3), Tier::Near);
+        assert_eq!(tier_of(&chosen, 4), Tier::Mid);
+        assert_eq!(tier_of(&chosen, 1), Tier::Far);
+    }
+
+    #[test]
+    fn a_tier_is_kept_until_another_clearly_outranks_it() {
+        let levels = DetailLevels {
+            near: 1,
+            mid: 0,
+            hysteresis: 0.25,
+            ..default()
+        };
+        // 2 is near; 1 is a little larger, not enough to take its place.
+        let chosen = choose(
+            ranks(&[(1, 0.11, Tier::Far), (2, 0.1, Tier::Near)]),
+            &levels,
+        );
+        assert_eq!(tier_of(&chosen, 2), Tier::Near);
+        assert_eq!(tier_of(&chosen, 1), Tier::Far);
+        // Clearly larger: it takes the place.
+        let chosen = choose(
+            ranks(&[(1, 0.13, Tier::Far), (2, 0.1, Tier::Near)]),
+            &levels,
+        );
+        assert_eq!(tier_of(&chosen, 1), Tier::Near);
+        assert_eq!(tier_of(&chosen, 2), Tier::Far);
+    }
+
+    #[test]
+    fn ties_and_sizes_below_the_threshold() {
+        let levels = DetailLevels {
+            near: 5,
+            mid: 5,
+            near_size: 0.2,
+            mid_size: 0.05,
+            hysteresis: 0.0,
+            ..default()
+        };
+        let far = Tier::Far;
+        let chosen = choose(
+            ranks(&[(7, 0.3, far), (3, 0.3, far), (5, 0.1, far), (6, 0.01, far)]),
+            &levels,
+        );
+        assert_eq!(tier_of(&chosen, 3), Tier::Near);
+        assert_eq!(tier_of(&chosen, 7), Tier::Near);
+        assert_eq!(tier_of(&chosen, 5), Tier::Mid);
+        assert_eq!(tier_of(&chosen, 6), Tier::Far);
+        // The order of the input changes nothing.
+        let again = choose(
+            ranks(&[(6, 0.01, far), (5, 0.1, far), (3, 0.3, far), (7, 0.3, far)]),
+            &levels,
+        );
+        let mut a = chosen.clone();
+        let mut b = again;
+        a.sort();
+        b.sort();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn the_mid_tier_is_a_compact_box_of_the_same_cells_and_step() {
+        use crate::plugin::slice::tier_species;
+        use crate::species::Species;
+        let species = Species::default();
+        let mid = tier_species(&species, Tier::Mid);
+        assert!(mid.grid_resolution < species.grid_resolution);
+        assert!((mid.cell_size() - species.cell_size()).abs() < 1e-6 * species.cell_size());
+        assert_eq!(mid.steps_per_cycle(), species.steps_per_cycle());
+        assert_eq!(tier_species(&species, Tier::Far), species);
+    }
+}

@@ -1,0 +1,190 @@
+//! Moving jellyfish between tiers, continuing from where each is in its stroke: a far one
+//! takes its species' recorded cycle at its phase, a nearer one resumes the recorded slice
+//! state; what differs in shape fades out over a quarter stroke.
+
+use super::caches::CycleCaches;
+use super::choose::{choose, screen_sizes};
+use crate::plugin::interpolation::{SliceHistory, Snapshot};
+use crate::plugin::render::JellyfishMeshes;
+use crate::plugin::settings::JellyfishSettings;
+use crate::plugin::slice::{JellyfishSlice, Replay, SliceEdited, Tier, tier_species};
+use crate::plugin::swimming::SwimMotion;
+use crate::plugin::timings::JellyfishTimings;
+use crate::sim::clock::FixedClock;
+use crate::sim::cycle::CycleCache;
+use crate::species::Species;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+use std::sync::Arc;
+
+/// A jellyfish as the levels of detail see it.
+type Detailed = (
+    Entity,
+    &'static mut JellyfishSlice,
+    &'static mut SliceHistory,
+    &'static mut SwimMotion,
+    Option<&'static JellyfishMeshes>,
+    &'static GlobalTransform,
+);
+
+/// Moves jellyfish between tiers: demotions at once, promotions (the costly way) up to
+/// [`DetailLevels::promotions_per_frame`], nearest first.
+pub(super) fn change_tiers(
+    cameras: Query<(Entity, &Camera, &GlobalTransform, &Projection)>,
+    mut jellyfish: Query<Detailed>,
+    settings: Res<JellyfishSettings>,
+    mut caches: ResMut<CycleCaches>,
+    mut edited: MessageReader<SliceEdited>,
+    timings: Res<JellyfishTimings>,
+) {
+    // Drop cycles of species no jellyfish has any more (after edits).
+    let mut distinct: Vec<&Species> = Vec::new();
+    for (_, slice, ..) in &jellyfish {
+        if !distinct.contains(&&slice.species) {
+            distinct.push(&slice.species);
+        }
+    }
+    let in_use: Vec<Species> = distinct
+        .into_iter()
+        .flat_map(|s| [s.clone(), tier_species(s, Tier::Mid)])
+        .collect();
+    caches.retain(&in_use);
+    // The cycles of live slices just edited, for when they move away: recorded in the
+    // background from now.
+    for SliceEdited(species) in edited.read() {
+        caches.request(species);
+    }
+    caches.collect();
+    // Far jellyfish of an edited species take its cycle once it is recorded.
+    for (_, mut slice, mut history, ..) in &mut jellyfish {
+        let wanted = slice.replay.as_ref().and_then(|r| r.wanted.clone());
+        if let Some(cache) = wanted.and_then(|w| caches.request(&w)) {
+            switch_cycle(&mut slice, &mut history, cache);
+        }
+    }
+    let ranked = &jellyfish;
+    let levels = &settings.detail;
+    let sizes = screen_sizes(
+        &cameras,
+        ranked
+            .iter()
+            .map(|(e, slice, _, _, meshes, transform)| (e, slice, meshes, transform)),
+    );
+    let mut changes: Vec<(Entity, Tier)> = choose(sizes, levels)
+        .into_iter()
+        .filter(|(e, tier)| ranked.get(*e).is_ok_and(|(_, s, ..)| s.tier != *tier))
+        .collect();
+    if changes.is_empty() {
+        return;
+    }
+    // Nearer tiers first; at most so many promotions.
+    let mut promotions = 0;
+    changes.retain(|(e, tier)| {
+        let from = ranked.get(*e).map_or(Tier::Far, |(_, s, ..)| s.tier);
+        if *tier < from {
+            promotions += 1;
+            promotions <= levels.promotions_per_frame
+        } else {
+            true
+        }
+    });
+    // What each tier of each species simulates (deciding it validates a species).
+    let mut variants: Vec<(Species, Tier, Species)> = Vec::new();
+    for (e, tier) in &changes {
+        if let Ok((_, slice, ..)) = ranked.get(*e)
+            && !variants
+                .iter()
+                .any(|(s, t, _)| s == &slice.species && t == tier)
+        {
+            let simulated = tier_species(&slice.species, *tier);
+            variants.push((slice.species.clone(), *tier, simulated));
+        }
+    }
+    // A species being recorded in the background (just edited) changes tier once it is
+    // ready, instead of recording it again here and stalling the frame.
+    variants.retain(|(.., simulated)| !caches.is_recording(simulated));
+    caches.prepare(variants.iter().map(|v| v.2.clone()).collect());
+    let plan: HashMap<Entity, (Tier, Arc<CycleCache>)> = changes
+        .iter()
+        .filter_map(|(e, tier)| {
+            let (_, slice, ..) = ranked.get(*e).ok()?;
+            let (.., simulated) = variants
+                .iter()
+                .find(|(s, t, _)| s == &slice.species && t == tier)?;
+            Some((*e, (*tier, caches.find(simulated)?)))
+        })
+        .collect();
+    timings.add_tier_changes(plan.len());
+    jellyfish
+        .par_iter_mut()
+        .for_each(|(entity, mut slice, mut history, mut motion, ..)| {
+            if let Some((tier, cache)) = plan.get(&entity) {
+                move_to(&mut slice, &mut history, &mut motion, *tier, cache.clone());
+            }
+        });
+}
+
+/// A far jellyfish takes another cycle (its species was edited), at the same phase.
+fn switch_cycle(slice: &mut JellyfishSlice, history: &mut SliceHistory, cache: Arc<CycleCache>) {
+    let Some(replay) = slice.replay.as_mut() else {
+        return;
+    };
+    let species = cache.species();
+    replay.clock = replay
+        .clock
+        .retimed(species.period(), species.steps_per_cycle());
+    let mut now = Snapshot::default();
+    let time = replay.clock.time();
+    now.copy_frame(cache.frame(replay.index()), time, replay.swim as f32);
+    history.change_tier(&now, time, fade(&replay.clock));
+    slice.rest_bell = cache.rest_bell().to_vec();
+    replay.cache = cache;
+    replay.wanted = None;
+    slice.anchor = None;
+}
+
+/// Steps over which a change of shape fades out: a quarter stroke.
+fn fade(clock: &FixedClock) -> u32 {
+    (clock.steps_per_cycle() / 4).max(1)
+}
+
+/// Moves one jellyfish to `tier`, continuing from where it is in its stroke.
+fn move_to(
+    slice: &mut JellyfishSlice,
+    history: &mut SliceHistory,
+    motion: &mut SwimMotion,
+    tier: Tier,
+    cache: Arc<CycleCache>,
+) {
+    let Some(clock) = slice.clock().cloned() else {
+        return;
+    };
+    let species = cache.species();
+    let clock = clock.retimed(species.period(), species.steps_per_cycle());
+    let index = (clock.stroke_steps() % clock.steps_per_cycle() as u64) as u32;
+    let mut now = Snapshot::default();
+    let fade = fade(&clock);
+    if tier == Tier::Far {
+        let replay = Replay {
+            cache: cache.clone(),
+            clock,
+            swim: 0.0,
+            wanted: None,
+        };
+        now.copy_frame(cache.frame(index), replay.clock.time(), 0.0);
+        motion.swum = 0.0;
+        history.change_tier(&now, replay.clock.time(), fade);
+        slice.sim = None;
+        slice.replay = Some(replay);
+    } else {
+        let mut sim = cache.resume(index);
+        sim.set_clock(clock);
+        now.capture(&sim);
+        motion.swum = sim.swim_distance();
+        history.change_tier(&now, sim.clock().time(), fade);
+        slice.sim = Some(sim);
+        slice.replay = None;
+    }
+    slice.tier = tier;
+    slice.anchor = None;
+}

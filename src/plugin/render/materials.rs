@@ -1,0 +1,216 @@
+//! Our materials on every jellyfish: one cache per material type
+//! ([`SpeciesMaterials`]), made with a species' first jellyfish, updated in place when the
+//! species is edited, and put on each new mesh of the path that wears it.
+//!
+//! Only where the app renders (the material's assets exist): headless apps and tests run
+//! without it. A jellyfish that already has a `MeshMaterial3d<StandardMaterial>` keeps its
+//! own, and is drawn with CPU meshes. Leave [`JellyfishMaterialPlugin`] out to dress every
+//! jellyfish yourself (they are then drawn with CPU meshes).
+
+use super::looks::{SpeciesMaterials, looks};
+use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+use super::patterns::BellPatterns;
+use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
+use crate::plugin::jellyfish::Jellyfish;
+use crate::plugin::schedule::JellyfishSystems;
+use crate::species::Species;
+use bevy::ecs::system::SystemParam;
+use bevy::pbr::{MaterialPlugin, PbrPlugin};
+use bevy::prelude::*;
+
+/// Makes, updates and assigns our materials: `StandardMaterial`s on CPU meshes and
+/// [`SurfaceMaterial`]s on templates, with each species' canal and gonad pattern.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct JellyfishMaterialPlugin;
+
+impl Plugin for JellyfishMaterialPlugin {
+    fn build(&self, app: &mut App) {
+        // Only where the app renders; add the plugins after `DefaultPlugins`.
+        if app.is_plugin_added::<PbrPlugin>() {
+            app.add_plugins(MaterialPlugin::<SurfaceMaterial>::default());
+        }
+        app.init_resource::<BellPatterns>()
+            .register_type::<BellPatterns>()
+            .init_resource::<SpeciesMaterials<StandardMaterial>>()
+            .init_resource::<SpeciesMaterials<SurfaceMaterial>>()
+            .add_systems(
+                PostUpdate,
+                (
+                    super::patterns::repaint_edited.run_if(resource_exists::<Assets<Image>>),
+                    (update::<StandardMaterial>, assign::<StandardMaterial>)
+                        .chain()
+                        .run_if(resource_exists::<Assets<StandardMaterial>>),
+                    (update::<SurfaceMaterial>, assign::<SurfaceMaterial>)
+                        .chain()
+                        .run_if(resource_exists::<Assets<SurfaceMaterial>>),
+                )
+                    .in_set(JellyfishSystems::Materials),
+            );
+    }
+}
+
+/// A material our jellyfish wear: made from the `StandardMaterial` look of
+/// [`bell_material`](super::bell_material) and its siblings.
+pub(crate) trait JellyfishLook: Material {
+    /// The surfaces that wear it.
+    const PATH: SurfacePath;
+
+    /// Whether it can be made yet (templates need the shape buffers).
+    fn ready(buffers: Option<&ShapeBuffers>) -> bool;
+
+    /// The material with `look`; `None` until it is [`ready`](Self::ready).
+    fn dress(look: StandardMaterial, buffers: Option<&ShapeBuffers>) -> Option<Self>;
+
+    /// Gives an existing material a new look (the species was edited).
+    fn restyle(&mut self, look: StandardMaterial);
+}
+
+impl JellyfishLook for StandardMaterial {
+    const PATH: SurfacePath = SurfacePath::CpuMeshes;
+
+    fn ready(_: Option<&ShapeBuffers>) -> bool {
+        true
+    }
+
+    fn dress(look: StandardMaterial, _: Option<&ShapeBuffers>) -> Option<Self> {
+        Some(look)
+    }
+
+    fn restyle(&mut self, look: StandardMaterial) {
+        *self = look;
+    }
+}
+
+impl JellyfishLook for SurfaceMaterial {
+    const PATH: SurfacePath = SurfacePath::Templates;
+
+    fn ready(buffers: Option<&ShapeBuffers>) -> bool {
+        buffers.is_some()
+    }
+
+    fn dress(look: StandardMaterial, buffers: Option<&ShapeBuffers>) -> Option<Self> {
+        let buffers = buffers?;
+        Some(SurfaceMaterial {
+            base: look,
+            extension: SurfaceExtension {
+                offsets: buffers.offsets.clone(),
+                shapes: buffers.shapes.clone(),
+            },
+        })
+    }
+
+    fn restyle(&mut self, look: StandardMaterial) {
+        self.base = look;
+    }
+}
+
+/// Edited species restyle their materials in place; removed ones are forgotten.
+fn update<M: JellyfishLook>(
+    mut events: MessageReader<AssetEvent<Species>>,
+    species: Res<Assets<Species>>,
+    mut cache: ResMut<SpeciesMaterials<M>>,
+    mut materials: ResMut<Assets<M>>,
+    patterns: Res<BellPatterns>,
+) {
+    for event in events.read() {
+        match event {
+            AssetEvent::Modified { id } => {
+                let (Some(s), Some(handles)) = (species.get(*id), cache.by_species.get(id)) else {
+                    continue;
+                };
+                if s.validate().is_err() {
+                    continue;
+                }
+                for (handle, look) in handles.iter().zip(looks(s, patterns.by_species.get(id))) {
+                    if let Some(mut m) = materials.get_mut(handle) {
+                        m.restyle(look);
+                    }
+                }
+            }
+            AssetEvent::Removed { id } | AssetEvent::Unused { id } => {
+                cache.by_species.remove(id);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Entities with `T` that have no `M` yet.
+type Undressed<T, M> = (With<T>, Without<MeshMaterial3d<M>>);
+
+/// What a species' materials are made from: its parameters, its painted patterns, the
+/// shape buffers (templates) and the asset stores they go into.
+#[derive(SystemParam)]
+struct Wardrobe<'w, M: JellyfishLook> {
+    species: Res<'w, Assets<Species>>,
+    cache: ResMut<'w, SpeciesMaterials<M>>,
+    materials: ResMut<'w, Assets<M>>,
+    patterns: ResMut<'w, BellPatterns>,
+    images: Option<ResMut<'w, Assets<Image>>>,
+    buffers: Option<Res<'w, ShapeBuffers>>,
+}
+
+impl<M: JellyfishLook> Wardrobe<'_, M> {
+    /// The species' `[bell, tentacles, glow]` materials, made the first time.
+    fn get(&mut self, handle: &Handle<Species>) -> Option<[Handle<M>; 3]> {
+        let s = self.species.get(handle)?;
+        if let Some(made) = self.cache.by_species.get(&handle.id()) {
+            return Some(made.clone());
+        }
+        let buffers = self.buffers.as_deref();
+        // Nothing is made (not even the pattern) until the material can be.
+        if !M::ready(buffers) {
+            return None;
+        }
+        let pattern = self
+            .images
+            .as_deref_mut()
+            .map(|images| self.patterns.get_or_make(handle.id(), s, images));
+        let made = looks(s, pattern.as_ref())
+            .map(|look| M::dress(look, buffers).map(|m| self.materials.add(m)));
+        let [Some(bell), Some(tentacles), Some(glow)] = made else {
+            return None;
+        };
+        let made = [bell, tentacles, glow];
+        self.cache.by_species.insert(handle.id(), made.clone());
+        Some(made)
+    }
+}
+
+/// Puts our materials on the meshes of the path that wears `M`.
+fn assign<M: JellyfishLook>(
+    mut commands: Commands,
+    bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<M>>>,
+    tentacles: Query<(Entity, &ChildOf), Undressed<JellyfishTentacles, M>>,
+    glows: Query<(Entity, &ChildOf), Undressed<JellyfishGlow, M>>,
+    parents: Query<(&Jellyfish, &JellyfishMeshes, Option<&MeshMaterial3d<M>>)>,
+    mut wardrobe: Wardrobe<M>,
+) {
+    let worn = |m: &JellyfishMeshes| m.path == Some(M::PATH);
+    for (entity, jelly, meshes) in &bells {
+        if meshes.umbrella.is_some()
+            && worn(meshes)
+            && let Some([bell, ..]) = wardrobe.get(&jelly.species)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(bell));
+        }
+    }
+    for (entity, child_of) in &tentacles {
+        if let Ok((jelly, meshes, _)) = parents.get(child_of.parent())
+            && worn(meshes)
+            && let Some([_, tentacles, _]) = wardrobe.get(&jelly.species)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(tentacles));
+        }
+    }
+    // A bell in a material of the game's own keeps it alone: no glow of ours over it.
+    for (entity, child_of) in &glows {
+        if let Ok((jelly, meshes, bell)) = parents.get(child_of.parent())
+            && worn(meshes)
+            && let Some([ours, .., glow]) = wardrobe.get(&jelly.species)
+            && bell.is_none_or(|b| b.0 == ours)
+        {
+            commands.entity(entity).insert(MeshMaterial3d(glow));
+        }
+    }
+}

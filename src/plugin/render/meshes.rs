@@ -1,0 +1,83 @@
+//! What a jellyfish is drawn with: its meshes (the umbrella on the jellyfish itself, the
+//! tentacles and the glow layer on children) and the path that builds them.
+
+use crate::plugin::interpolation::Snapshot;
+use crate::shape::packed::ShapePacker;
+use crate::shape::{JellyMesh, Resolution};
+use bevy::prelude::*;
+
+/// How this app draws jellyfish surfaces, resolved each frame from
+/// [`JellyfishSettings::surfaces`](crate::plugin::JellyfishSettings::surfaces) and what
+/// the device can do.
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq, Reflect)]
+pub enum SurfacePath {
+    /// Shared template meshes shaped on the GPU.
+    Templates,
+    /// Each jellyfish's own meshes, rebuilt on the CPU.
+    CpuMeshes,
+}
+
+/// The jellyfish's meshes and what they are built from each frame.
+///
+/// The umbrella is the jellyfish entity's own `Mesh3d`; all tentacles are one mesh on a
+/// child ([`JellyfishTentacles`]). With CPU meshes these are the jellyfish's own assets,
+/// rebuilt every frame (despawning frees them); with templates (see
+/// [`SurfaceMode`](crate::plugin::SurfaceMode)) they are shared by every jellyfish of the same
+/// resolution and the vertex shader shapes them from the jellyfish's packed shape.
+#[derive(Component, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct JellyfishMeshes {
+    /// The umbrella's mesh, once set up.
+    pub umbrella: Option<Handle<Mesh>>,
+    /// The tentacles' mesh, once set up.
+    pub tentacles: Option<Handle<Mesh>>,
+    /// The child entity drawing the tentacles.
+    pub tentacle_entity: Option<Entity>,
+    /// The child entity drawing the umbrella's glow layer ([`JellyfishGlow`]).
+    pub glow_entity: Option<Entity>,
+    /// How it is drawn, once set up.
+    pub(crate) path: Option<SurfacePath>,
+    /// CPU meshes: the buffers the assets are rebuilt from.
+    #[reflect(ignore)]
+    pub(crate) buffers: JellyMesh,
+    /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
+    pub(crate) block: Vec<f32>,
+    #[reflect(ignore)]
+    pub(crate) packer: ShapePacker,
+    pub(crate) slot: Option<u32>,
+    #[reflect(ignore)]
+    pub(crate) blended: Snapshot,
+    /// The topology the mesh assets were written with.
+    #[reflect(ignore)]
+    pub(crate) written: Option<Resolution>,
+    /// Buffers hold a frame not yet copied to the assets.
+    pub(crate) dirty: bool,
+    /// The blended slice's bounds in the mesh's frame (see `render::culling`).
+    pub(crate) bounds: Option<bevy::camera::primitives::Aabb>,
+    /// Whether a camera saw it this frame (meshed) or not (skipped).
+    pub(crate) seen: bool,
+}
+
+impl JellyfishMeshes {
+    /// Whether the last frame meshed it: a camera saw it, or there is no camera.
+    pub fn seen(&self) -> bool {
+        self.seen
+    }
+
+    /// How its surfaces are built, once the plugin has set it up.
+    pub fn path(&self) -> Option<SurfacePath> {
+        self.path
+    }
+}
+
+/// Marks the child entity holding a jellyfish's tentacle mesh.
+#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct JellyfishTentacles;
+
+/// Marks the child entity that draws the umbrella a second time, additively: the glow
+/// layer (see [`glow_material`](crate::plugin::render::glow_material)). It shares the umbrella's
+/// mesh, so it costs a draw, not a mesh.
+#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
+#[reflect(Component)]
+pub struct JellyfishGlow;

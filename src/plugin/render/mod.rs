@@ -1,0 +1,49 @@
+//! Drawing jellyfish: each frame's surfaces built from the blended slice, on the CPU as
+//! meshes of their own or on the GPU from shared templates ([`SurfacePath`]), bounded and
+//! culled from the slice, and dressed in our two-layer material.
+
+mod culling;
+mod geometry;
+mod looks;
+mod materials;
+mod meshes;
+mod patterns;
+mod rebuild;
+mod templates;
+
+pub use geometry::{JellyfishGeometry, WorldSurfaces};
+pub use looks::{GLOW_RADIANCE, SpeciesMaterials, bell_material, glow_material, tentacle_material};
+pub use materials::JellyfishMaterialPlugin;
+pub use meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+pub use patterns::{BellPatterns, PatternImages, pattern_images};
+pub use templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
+
+use crate::plugin::jellyfish::Jellyfish;
+use crate::plugin::schedule::JellyfishSystems;
+use bevy::prelude::*;
+
+/// Builds every jellyfish's surfaces each frame, on the path the settings and the device
+/// allow, and keeps their bounds; [`JellyfishMaterialPlugin`] dresses them.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct JellyfishRenderPlugin;
+
+impl Plugin for JellyfishRenderPlugin {
+    fn build(&self, app: &mut App) {
+        app.register_required_components::<Jellyfish, JellyfishMeshes>()
+            .register_type::<JellyfishMeshes>()
+            .register_type::<JellyfishTentacles>()
+            .register_type::<JellyfishGlow>()
+            .add_systems(
+                PostUpdate,
+                (
+                    templates::set_up,
+                    rebuild::build_buffers,
+                    rebuild::write_meshes,
+                    templates::upload,
+                )
+                    .chain()
+                    .in_set(JellyfishSystems::RebuildMeshes),
+            );
+        templates::build(app);
+    }
+}

@@ -1,0 +1,94 @@
+//! Slices for new jellyfish, built once their species has loaded.
+
+use super::JellyfishSlice;
+use super::events::{Lifecycle, LifecycleQueue};
+use crate::plugin::interpolation::SliceHistory;
+use crate::plugin::jellyfish::Jellyfish;
+use crate::plugin::species_asset::{Refusals, SpeciesRejected};
+use crate::plugin::swimming::{Pose, SwimMotion};
+use crate::sim::SliceSim;
+use crate::species::{Species, SpeciesError};
+use bevy::platform::collections::HashSet;
+use bevy::prelude::*;
+use bevy::utils::Parallel;
+
+/// At most this many slices are built in one frame: a school of hundreds spawned at once
+/// starts over a few frames instead of in one long one. A count, not a time budget, so
+/// which jellyfish start when is the same in every run.
+pub(crate) const NEW_SLICES_PER_FRAME: usize = 32;
+
+/// Builds the slice of each jellyfish whose species has loaded, in parallel, the lowest
+/// entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset starts the
+/// clock mid-stroke, which also decides which frames the slice steps on, spreading
+/// the load.
+pub(super) fn create_slices(
+    mut jellyfish: Query<(
+        Entity,
+        &Jellyfish,
+        &mut JellyfishSlice,
+        &mut SliceHistory,
+        &mut SwimMotion,
+        &Transform,
+    )>,
+    species: Res<Assets<Species>>,
+    mut edits: MessageReader<AssetEvent<Species>>,
+    mut refused: Local<Refused>,
+    mut refusals: ResMut<Refusals>,
+    mut rejected: MessageWriter<SpeciesRejected>,
+    events: Res<LifecycleQueue>,
+) {
+    let Refused { queue, failed } = &mut *refused;
+    // A refused species is retried only after an edit, so the error is logged once.
+    if edits.read().count() > 0 {
+        failed.clear();
+    }
+    let mut waiting: Vec<Entity> = jellyfish
+        .iter()
+        .filter(|(e, jelly, slice, ..)| {
+            !slice.started() && !failed.contains(e) && species.contains(&jelly.species)
+        })
+        .map(|(e, ..)| e)
+        .collect();
+    waiting.sort_unstable();
+    waiting.truncate(NEW_SLICES_PER_FRAME);
+    let chosen: HashSet<Entity> = waiting.into_iter().collect();
+    jellyfish.par_iter_mut().for_each(
+        |(entity, jelly, mut slice, mut history, mut motion, transform)| {
+            if !chosen.contains(&entity) {
+                return;
+            }
+            let Some(simulated) = species.get(&jelly.species) else {
+                return;
+            };
+            match SliceSim::new(simulated) {
+                Ok(mut sim) => {
+                    let seed = jelly.seed_for(entity);
+                    sim.set_time(jelly.phase_for(seed) * simulated.period());
+                    let pose = Pose::of(transform);
+                    *motion = SwimMotion {
+                        pose,
+                        swum: sim.swim_distance(),
+                        ..default()
+                    };
+                    slice.start(&mut history, sim, simulated.clone(), seed, pose);
+                    events.push(entity, Lifecycle::Started);
+                }
+                Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),
+            }
+        },
+    );
+    for (entity, id, error) in queue.drain() {
+        failed.insert(entity);
+        if refusals.say(id, &error, &mut rejected) {
+            error!("jellyfish species {id} refused: {error}");
+        }
+    }
+    failed.retain(|e| jellyfish.contains(*e));
+}
+
+/// Slices that could not be built; they are retried once a species is edited.
+#[derive(Default)]
+pub(super) struct Refused {
+    queue: Parallel<Vec<(Entity, AssetId<Species>, SpeciesError)>>,
+    failed: HashSet<Entity>,
+}

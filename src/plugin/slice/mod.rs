@@ -1,0 +1,176 @@
+//! The slice: each jellyfish's 2D simulation (or, far from the camera, its species'
+//! recorded stroke cycle), created when its species has loaded, told of species edits,
+//! and stepped by the frame's virtual time.
+
+mod create;
+mod edit;
+mod events;
+mod step;
+mod tier;
+
+pub(crate) use edit::SliceEdited;
+pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
+pub use tier::Tier;
+pub(crate) use tier::{Replay, tier_species};
+
+use super::interpolation::SliceHistory;
+use super::jellyfish::Jellyfish;
+use super::schedule::JellyfishSystems;
+use super::swimming::Pose;
+use crate::sim::SliceSim;
+use crate::sim::clock::FixedClock;
+use crate::species::Species;
+use bevy::math::Vec2;
+use bevy::prelude::*;
+
+/// Builds, edits and steps every jellyfish's slice, and triggers its lifecycle events.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SlicePlugin;
+
+impl Plugin for SlicePlugin {
+    fn build(&self, app: &mut App) {
+        app.register_required_components::<Jellyfish, JellyfishSlice>()
+            .register_type::<Jellyfish>()
+            .register_type::<JellyfishSlice>()
+            .register_type::<Tier>()
+            .register_type::<JellyfishStarted>()
+            .register_type::<StrokeStarted>()
+            .register_type::<SliceRecovered>()
+            .init_resource::<events::LifecycleQueue>()
+            .add_message::<SliceEdited>()
+            .add_systems(
+                PreUpdate,
+                (edit::apply_edits, create::create_slices)
+                    .chain()
+                    .in_set(JellyfishSystems::Prepare),
+            )
+            .add_systems(
+                PostUpdate,
+                (step::step_slices, events::trigger_lifecycle)
+                    .chain()
+                    .in_set(JellyfishSystems::StepSlices),
+            );
+    }
+}
+
+/// The simulated slice (or, far from the camera, its species' recorded stroke cycle).
+///
+/// Empty until the species asset has loaded.
+#[derive(Component, Default, Reflect)]
+#[reflect(Component, Default)]
+pub struct JellyfishSlice {
+    /// The live slice (near and mid tiers).
+    #[reflect(ignore)]
+    pub(crate) sim: Option<SliceSim>,
+    /// The replayed cycle (far tier).
+    #[reflect(ignore)]
+    pub(crate) replay: Option<Replay>,
+    pub(crate) tier: Tier,
+    /// The species as simulated: the last valid one it was given.
+    pub(crate) species: Species,
+    pub(crate) seed: u32,
+    /// Distance swum and the bell's centroid at the newest recorded step.
+    pub(crate) newest: (f32, Vec2),
+    /// The bell at rest, which meshes measure contraction against.
+    pub(crate) rest_bell: Vec<Vec2>,
+    /// Virtual time and the clock's added time at one moment: the clock is set from the
+    /// virtual time elapsed since (an exact count of nanoseconds), so frames that split
+    /// the same time differently end at the same state. Reset when the clock is replaced.
+    #[reflect(ignore)]
+    pub(crate) anchor: Option<(std::time::Duration, f64)>,
+}
+
+impl JellyfishSlice {
+    /// The live slice, once its species has loaded and while it is near or mid (for debug
+    /// overlays and tools); `None` while it replays its species' cycle (far).
+    pub fn sim(&self) -> Option<&SliceSim> {
+        self.sim.as_ref()
+    }
+
+    /// The live slice, mutable: for testing recovery (`SliceSim::poison_for_tests`).
+    /// Anything changed here is physics, outside the species' calibration.
+    #[doc(hidden)]
+    pub fn sim_mut_for_tests(&mut self) -> Option<&mut SliceSim> {
+        self.sim.as_mut()
+    }
+
+    /// Whether it swims yet: its species has loaded and it has a slice or a replay.
+    pub fn started(&self) -> bool {
+        self.sim.is_some() || self.replay.is_some()
+    }
+
+    /// How much of it is simulated (see [`Tier`]).
+    pub fn tier(&self) -> Tier {
+        self.tier
+    }
+
+    /// The species the slice runs with: the last valid one it was given.
+    pub fn species(&self) -> Option<&Species> {
+        self.started().then_some(&self.species)
+    }
+
+    /// Its clock: the live slice's or the replay's.
+    pub(crate) fn clock(&self) -> Option<&FixedClock> {
+        match (&self.sim, &self.replay) {
+            (Some(sim), _) => Some(sim.clock()),
+            (None, Some(replay)) => Some(&replay.clock),
+            _ => None,
+        }
+    }
+
+    /// Where it is in its stroke, in cycles [0, 1).
+    pub fn phase(&self) -> Option<f32> {
+        self.clock().map(FixedClock::phase)
+    }
+
+    /// The seed its surface noise was drawn with.
+    pub fn seed(&self) -> u32 {
+        self.seed
+    }
+
+    /// Swim distance after the last step, m.
+    pub fn swim_distance(&self) -> f32 {
+        self.newest.0
+    }
+
+    /// A domain point of the newest step in the mesh's local frame (metres, origin at the
+    /// bell's centroid): for overlays drawn over the jellyfish.
+    pub fn to_local(&self, p: Vec2) -> Vec3 {
+        (p - self.newest.1).extend(0.0)
+    }
+
+    /// The slice time a frame shows, s: the time added to the slice less one step, so
+    /// that two stored steps always bracket it and a frame never waits for a step.
+    pub fn display_time(&self) -> f64 {
+        self.clock().map_or(0.0, |c| c.added() - c.step())
+    }
+
+    /// Starts the slice at `pose`, near; its clock's start (the phase offset) picks the
+    /// frames it steps on.
+    pub(crate) fn start(
+        &mut self,
+        history: &mut SliceHistory,
+        sim: SliceSim,
+        species: Species,
+        seed: u32,
+        pose: Pose,
+    ) {
+        history.restart(&sim, pose);
+        self.rest_bell = sim.view().rest_bell.to_vec();
+        self.sim = Some(sim);
+        self.replay = None;
+        self.tier = Tier::Near;
+        self.anchor = None;
+        self.species = species;
+        self.seed = seed;
+        self.show(history);
+    }
+
+    /// Tells the history which time the frame shows, and keeps what its newest step says.
+    pub(crate) fn show(&mut self, history: &mut SliceHistory) {
+        history.show(self.display_time());
+        self.newest = history
+            .newest()
+            .map_or((0.0, Vec2::ZERO), |s| (s.swim, s.centroid));
+    }
+}

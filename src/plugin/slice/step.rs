@@ -1,0 +1,162 @@
+//! Stepping the slices each frame by the frame's virtual time, in parallel over
+//! jellyfish; after each step the jellyfish travels (`plugin::swimming`) and the step is
+//! recorded for the frames to blend between (`plugin::interpolation`).
+//!
+//! Each slice has its own fixed step and clock, so how time is split into frames changes
+//! nothing; stepping every frame (not on the app's fixed ticks) keeps the work of each
+//! frame even. Pausing or slowing `Time<Virtual>` pauses or slows the jellyfish.
+
+use super::JellyfishSlice;
+use super::events::{Lifecycle, LifecycleQueue};
+use super::tier::Replay;
+use crate::plugin::interpolation::SliceHistory;
+use crate::plugin::swimming::{Resting, Steering, Stroke, SwimMotion, Travel};
+use crate::plugin::timings::JellyfishTimings;
+use crate::plugin::water::AmbientWater;
+use crate::sim::clock::FixedClock;
+use bevy::prelude::*;
+use std::time::Instant;
+
+/// One jellyfish as the stepping sees it.
+type Stepped = (
+    Entity,
+    &'static mut JellyfishSlice,
+    &'static mut SliceHistory,
+    &'static mut SwimMotion,
+    &'static Transform,
+    Option<&'static Steering>,
+    Has<Resting>,
+);
+
+/// Adds the frame's time to every slice's clock; a slice takes the fixed steps of its
+/// own length that pays for (a far one plays them from its species' cycle), and after
+/// each one the jellyfish travels and the state is recorded for the frames to blend
+/// between. The physics sees only the slice's step, never the frame rate; slices started
+/// at different phases step on different frames, which spreads the cost.
+pub(super) fn step_slices(
+    mut jellyfish: Query<Stepped>,
+    water: Option<Res<AmbientWater>>,
+    time: Res<Time<Virtual>>,
+    timings: Res<JellyfishTimings>,
+    events: Res<LifecycleQueue>,
+) {
+    let (frame, now) = (time.delta_secs_f64(), time.elapsed_secs_f64());
+    let (elapsed, before) = (time.elapsed(), time.elapsed() - time.delta());
+    let still = AmbientWater::still();
+    let water = water.as_deref().unwrap_or(&still);
+    jellyfish.par_iter_mut().for_each(
+        |(entity, mut slice, mut history, mut motion, transform, steering, resting)| {
+            let slice = &mut *slice;
+            let Some(clock) = slice.clock() else {
+                return;
+            };
+            if frame > 0.0 {
+                let start = Instant::now();
+                let (at, added) = *slice.anchor.get_or_insert((before, clock.added()));
+                let until = added + elapsed.saturating_sub(at).as_secs_f64();
+                let travel = Travel {
+                    scale: transform.scale,
+                    water,
+                    now,
+                    steering,
+                };
+                let step = Step {
+                    entity,
+                    until,
+                    frame,
+                    resting,
+                    travel: &travel,
+                    events: &events,
+                };
+                step.advance(slice, &mut history, &mut motion);
+                timings.add_simulation(start.elapsed());
+            }
+            slice.show(&mut history);
+        },
+    );
+}
+
+/// One jellyfish's steps in one frame.
+struct Step<'a> {
+    entity: Entity,
+    /// The clock's added time to reach, s.
+    until: f64,
+    /// The frame's length, s.
+    frame: f64,
+    resting: bool,
+    travel: &'a Travel<'a>,
+    events: &'a LifecycleQueue,
+}
+
+impl Step<'_> {
+    /// Takes the steps the frame pays for, live or replayed.
+    fn advance(
+        &self,
+        slice: &mut JellyfishSlice,
+        history: &mut SliceHistory,
+        motion: &mut SwimMotion,
+    ) {
+        let swum_before = motion.swum;
+        let mut stepped = 0.0;
+        let (entity, frame, resting) = (self.entity, self.frame, self.resting);
+        if let Some(sim) = slice.sim.as_mut() {
+            if sim.resting() != resting {
+                sim.set_resting(resting);
+            }
+            let recoveries = sim.recoveries();
+            sim.advance_until_with(self.until, |sim| {
+                let clock = sim.clock();
+                let stroke = Stroke {
+                    species: sim.species(),
+                    step: clock.step() as f32,
+                    swim: sim.swim_distance(),
+                    phase: sim.phase(),
+                    resting: sim.resting(),
+                    behind: clock.added() - clock.time(),
+                };
+                self.travel.step(&stroke, motion);
+                stepped += stroke.step;
+                history.record(clock, frame, motion.pose, |s| s.capture(sim));
+                if stroke_begins(clock, stroke.resting) {
+                    self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
+                }
+            });
+            if sim.recoveries() > recoveries {
+                self.events
+                    .push(entity, Lifecycle::Recovered(sim.recoveries()));
+            }
+        } else if let Some(replay) = slice.replay.as_mut() {
+            replay.advance_until(self.until, resting, |replay: &Replay, cycle| {
+                let clock = &replay.clock;
+                let stroke = Stroke {
+                    species: replay.cache.species(),
+                    step: clock.step() as f32,
+                    swim: replay.swim as f32,
+                    phase: clock.phase(),
+                    resting,
+                    behind: clock.added() - clock.time(),
+                };
+                self.travel.step(&stroke, motion);
+                stepped += stroke.step;
+                let (time, swim) = (clock.time(), replay.swim as f32);
+                history.record(clock, frame, motion.pose, |s| {
+                    s.copy_frame(cycle, time, swim)
+                });
+                if stroke_begins(clock, resting) {
+                    self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
+                }
+            });
+        }
+        if stepped > 0.0 {
+            motion.swim_speed = (motion.swum - swum_before) * self.travel.scale.y / stepped;
+        }
+    }
+}
+
+/// Whether the step just taken ended a cycle: the next one contracts.
+fn stroke_begins(clock: &FixedClock, resting: bool) -> bool {
+    !resting
+        && clock
+            .stroke_steps()
+            .is_multiple_of(clock.steps_per_cycle() as u64)
+}

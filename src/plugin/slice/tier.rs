@@ -1,0 +1,72 @@
+//! How much of a jellyfish is simulated ([`Tier`]), and the far tier's stroke: its
+//! species' recorded cycle played on its own clock ([`Replay`]). Which tier each
+//! jellyfish gets is the levels of detail's choice (`plugin::lod`).
+
+use crate::sim::clock::FixedClock;
+use crate::sim::cycle::{CycleCache, CycleFrame};
+use crate::species::Species;
+use bevy::prelude::*;
+use std::sync::Arc;
+
+/// How much of a jellyfish is simulated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Reflect)]
+pub enum Tier {
+    /// The species' slice, live.
+    #[default]
+    Near,
+    /// A live slice in a compact box: cheaper, a few percent slower.
+    Mid,
+    /// The species' recorded stroke cycle, replayed: no fluid.
+    Far,
+}
+
+/// The species a tier simulates: the species itself near and far, its
+/// [`Species::compact_box`] mid.
+pub(crate) fn tier_species(species: &Species, tier: Tier) -> Species {
+    if tier == Tier::Mid {
+        species.compact_box()
+    } else {
+        species.clone()
+    }
+}
+
+/// A far jellyfish's stroke: its species' recorded cycle, played on its own clock.
+pub(crate) struct Replay {
+    pub cache: Arc<CycleCache>,
+    pub clock: FixedClock,
+    /// Distance swum, m.
+    pub swim: f64,
+    /// An edited species whose cycle is being recorded: the old cycle plays until then.
+    pub wanted: Option<Species>,
+}
+
+impl Replay {
+    /// Sets the time added to `added` seconds and plays the steps that pays for;
+    /// `after_step` sees each frame. Resting holds the frame where the stroke stopped and
+    /// swims nowhere.
+    pub fn advance_until(
+        &mut self,
+        added: f64,
+        resting: bool,
+        mut after_step: impl FnMut(&Self, &CycleFrame),
+    ) {
+        let cache = self.cache.clone();
+        for _ in 0..self.clock.add_until(added) {
+            if resting {
+                self.clock.tick_held();
+            } else {
+                self.clock.tick();
+            }
+            let frame = cache.frame(self.index());
+            if !resting {
+                self.swim += frame.surge as f64;
+            }
+            after_step(self, frame);
+        }
+    }
+
+    /// The place in the cycle of the state.
+    pub fn index(&self) -> u32 {
+        (self.clock.stroke_steps() % self.clock.steps_per_cycle() as u64) as u32
+    }
+}

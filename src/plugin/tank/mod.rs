@@ -1,0 +1,128 @@
+//! [`TankWater`]: the water of a whole tank (a coarse 3D stable-fluids grid,
+//! [`TankFluid`]), stirred by the game and by the jellyfish's own jets, that becomes the
+//! [`AmbientWater`] every jellyfish swims in.
+//!
+//! The water steps on the app's fixed ticks and takes the jets gathered after the last
+//! tick, summed in entity order, so a replay is the same water.
+
+use super::schedule::JellyfishSystems;
+use super::slice::JellyfishSlice;
+use super::swimming::SwimMotion;
+use super::timings::JellyfishTimings;
+use super::water::{AmbientWater, SampledWater};
+use crate::sim::tank::TankFluid;
+use bevy::prelude::*;
+
+pub use crate::sim::tank::Impulse;
+
+/// Steps a [`TankWater`] the app inserts and lets the jellyfish's jets stir it. Leave it
+/// out to keep a `TankWater` still or step it yourself.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TankWaterPlugin;
+
+impl Plugin for TankWaterPlugin {
+    fn build(&self, app: &mut App) {
+        app.register_type::<TankWater>()
+            .add_systems(
+                FixedUpdate,
+                step_tank
+                    .in_set(JellyfishSystems::StepWater)
+                    .run_if(resource_exists::<TankWater>),
+            )
+            .add_systems(
+                FixedUpdate,
+                collect_jets
+                    .in_set(JellyfishSystems::StirWater)
+                    .run_if(resource_exists::<TankWater>),
+            );
+    }
+}
+
+/// The tank's water, as a game adds it: `app.insert_resource(TankWater::new(min, max, cell))`.
+/// World units; the fluid's fields (`min`, `cell`, `size`, `damping`) are reached through it.
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(Resource)]
+pub struct TankWater {
+    /// How much of a jellyfish's surge speed its jet gives the water behind it (0: the
+    /// jellyfish do not stir the water).
+    pub jet_strength: f32,
+    #[reflect(ignore)]
+    fluid: TankFluid,
+}
+
+impl std::ops::Deref for TankWater {
+    type Target = TankFluid;
+
+    fn deref(&self) -> &TankFluid {
+        &self.fluid
+    }
+}
+
+impl std::ops::DerefMut for TankWater {
+    fn deref_mut(&mut self) -> &mut TankFluid {
+        &mut self.fluid
+    }
+}
+
+impl TankWater {
+    /// Still water filling the box from `min` to `max` (world) in cells of about `cell`.
+    pub fn new(min: Vec3, max: Vec3, cell: f32) -> Self {
+        Self {
+            jet_strength: 0.5,
+            fluid: TankFluid::new(min, max, cell),
+        }
+    }
+
+    /// The water as a field for the jellyfish.
+    pub fn snapshot(&self) -> SampledWater {
+        SampledWater {
+            origin: self.min + Vec3::splat(0.5 * self.cell),
+            spacing: self.cell,
+            size: self.size,
+            velocities: self.velocities().to_vec(),
+        }
+    }
+}
+
+/// Steps the tank and hands it to the jellyfish as their water.
+fn step_tank(
+    mut tank: ResMut<TankWater>,
+    mut ambient: ResMut<AmbientWater>,
+    time: Res<Time<Fixed>>,
+    timings: Res<JellyfishTimings>,
+) {
+    let start = std::time::Instant::now();
+    tank.step(time.delta_secs());
+    *ambient = AmbientWater::field(tank.snapshot());
+    timings.add_water(start.elapsed());
+}
+
+/// Each jellyfish's jet pushes the tank's water behind it: a blob a bell across, a bell
+/// and a half behind the bell, moving back at a share of its surge. Gathered in entity
+/// order, so the water is the same in every run.
+fn collect_jets(
+    mut tank: ResMut<TankWater>,
+    jellyfish: Query<(Entity, &JellyfishSlice, &SwimMotion, &Transform)>,
+) {
+    if tank.jet_strength <= 0.0 {
+        return;
+    }
+    let mut jets: Vec<(Entity, Vec3, f32, Vec3)> = jellyfish
+        .iter()
+        .filter_map(|(e, slice, motion, transform)| {
+            let species = slice.species()?;
+            if motion.swim_speed <= 0.0 {
+                return None;
+            }
+            let axis = motion.pose.rotation * Vec3::Y;
+            let size = species.diameter * transform.scale.max_element();
+            let at = motion.pose.position - axis * 1.5 * size;
+            Some((e, at, size, -axis * motion.swim_speed))
+        })
+        .collect();
+    jets.sort_by_key(|j| j.0);
+    let strength = tank.jet_strength;
+    for (_, at, size, velocity) in jets {
+        tank.stir(at, size, velocity * strength);
+    }
+}
