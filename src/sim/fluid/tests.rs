@@ -1,0 +1,109 @@
+//! The fluid on its own: projection, spreading, advection, viscosity.
+
+use super::*;
+use glam::Vec2;
+
+fn swirl(n: usize) -> Fluid {
+    let mut f = Fluid::new(n, 0.01, 1.3e-6, 1000.0);
+    for j in 0..n {
+        for i in 0..=n {
+            f.u[j * (n + 1) + i] = ((i * 31 + j * 17) % 13) as f32 * 0.01 - 0.06;
+        }
+    }
+    for j in 0..=n {
+        for i in 0..n {
+            f.v[j * n + i] = ((i * 7 + j * 29) % 11) as f32 * 0.01 - 0.05;
+        }
+    }
+    f.enforce_walls();
+    f
+}
+
+#[test]
+fn projection_leaves_no_divergence() {
+    for n in [16, 64, 100] {
+        let mut f = swirl(n);
+        f.project();
+        let rel = f.h * f.divergence_max() / f.speed_max();
+        assert!(rel <= 1e-4, "n = {n}: h·max|div|/max|u| = {rel}");
+    }
+}
+
+#[test]
+fn projection_is_idempotent() {
+    let mut f = swirl(32);
+    f.project();
+    let before = f.u.clone();
+    f.project();
+    let change =
+        f.u.iter()
+            .zip(&before)
+            .fold(0.0f32, |m, (a, b)| m.max((a - b).abs()));
+    assert!(change < 1e-5, "second projection changed u by {change}");
+}
+
+#[test]
+fn spreading_conserves_total_force() {
+    let mut f = Fluid::new(40, 0.005, 0.0, 1000.0);
+    let points = [
+        Vec2::new(0.0731, 0.1012),
+        Vec2::new(0.1, 0.05),
+        Vec2::new(0.0123, 0.187),
+    ];
+    let forces = [
+        Vec2::new(0.3, -1.2),
+        Vec2::new(-2.0, 0.7),
+        Vec2::new(0.01, 0.5),
+    ];
+    for (p, force) in points.iter().zip(&forces) {
+        f.spread_force(*p, *force);
+    }
+    let area = f.h * f.h;
+    let total = Vec2::new(f.force_u.iter().sum::<f32>(), f.force_v.iter().sum::<f32>()) * area;
+    let expected: Vec2 = forces.iter().sum();
+    assert!((total - expected).length() < 1e-5, "{total} vs {expected}");
+}
+
+#[test]
+fn interpolation_and_spreading_are_adjoint() {
+    // <J u, F> over points equals <u, S F> over the grid with the h² inner product.
+    let mut f = swirl(24);
+    let p = Vec2::new(0.0937, 0.1411);
+    let force = Vec2::new(0.7, -0.3);
+    let lhs = f.velocity_at(p).dot(force);
+    f.spread_force(p, force);
+    let area = f.h * f.h;
+    let rhs: f32 = f.u.iter().zip(&f.force_u).map(|(u, g)| u * g).sum::<f32>() * area
+        + f.v.iter().zip(&f.force_v).map(|(v, g)| v * g).sum::<f32>() * area;
+    assert!(
+        (lhs - rhs).abs() < 1e-6 * lhs.abs().max(1.0),
+        "{lhs} vs {rhs}"
+    );
+}
+
+#[test]
+fn uniform_flow_survives_advection() {
+    let n = 32;
+    let mut f = Fluid::new(n, 0.01, 0.0, 1000.0);
+    for j in 0..n {
+        for i in 1..n {
+            f.u[j * (n + 1) + i] = 0.05;
+        }
+    }
+    f.advect(0.1);
+    // Away from the walls, uniform flow is a fixed point of semi-Lagrangian advection.
+    let mid = f.u[(n / 2) * (n + 1) + n / 2];
+    assert!((mid - 0.05).abs() < 1e-6, "{mid}");
+}
+
+#[test]
+fn viscosity_dissipates_energy() {
+    let mut f = swirl(32);
+    f.project();
+    f.nu = 1e-4;
+    let e0 = f.kinetic_energy();
+    f.diffuse(0.5);
+    f.project();
+    assert!(f.kinetic_energy() < e0);
+    assert!(f.is_finite());
+}
