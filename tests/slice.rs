@@ -5,7 +5,7 @@
 
 mod common;
 
-use bevy_jellyfish::sim::body::{Outline, contains};
+use bevy_jellyfish::sim::inspect::{Outline, contains};
 use bevy_jellyfish::{SliceSim, Species};
 use glam::Vec2;
 

@@ -3,10 +3,10 @@
 /// Why a species (or a simulation built from one) was refused.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SpeciesError {
-    /// A parameter is out of range; `field` is its name in [`Species`].
+    /// A parameter is out of range; `field` is its name in [`Species`](super::Species).
     #[error("species field `{field}`: {reason}")]
     Invalid {
-        /// The field's name in [`Species`].
+        /// The field's name in [`Species`](super::Species).
         field: &'static str,
         /// Why it is refused, with the allowed range.
         reason: String,

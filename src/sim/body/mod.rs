@@ -17,12 +17,10 @@ mod outline;
 mod rest_shape;
 mod tentacle;
 
-pub use elements::{
-    BEND_LIMIT, HINGE_STIFFENING, Hinge, Muscle, REFERENCE_HINGE_LENGTH, STIFFENING, Spring,
-    TENTACLE_STRAIN_LIMIT,
-};
-pub use outline::{CRUMPLED_AREA, Outline, contains, crosses_itself, polygon_area, signed_area};
-pub use rest_shape::{mesoglea_thickness, rest_outline};
+pub(crate) use elements::{Hinge, Muscle, Spring};
+pub use outline::{Outline, contains};
+pub(crate) use outline::{polygon_area, signed_area};
+pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 
 use crate::species::Species;
 use elements::{Constraint, constraints, wrap_angle};
@@ -39,25 +37,23 @@ use tentacle::TentacleDrag;
 #[derive(Clone)]
 pub struct Body {
     /// Every point, m: the bell's subumbrella, then the tentacles.
-    pub points: Vec<Vec2>,
-    /// Positions at rest, relative to the same origin as construction.
-    pub rest_points: Vec<Vec2>,
+    pub(crate) points: Vec<Vec2>,
     /// Indices of the subumbrellar points (left margin, apex, right margin).
-    pub bell: Range<usize>,
+    pub(crate) bell: Range<usize>,
     /// Indices of the left and right tentacle points, margin outwards (margin excluded).
-    pub tentacles: [Range<usize>; 2],
+    pub(crate) tentacles: [Range<usize>; 2],
     /// Mesoglea and tentacle springs.
-    pub springs: Vec<Spring>,
+    pub(crate) springs: Vec<Spring>,
     /// Angular springs: the wall's bending stiffness.
-    pub hinges: Vec<Hinge>,
+    pub(crate) hinges: Vec<Hinge>,
     /// Muscle springs across the bell, driven by the contraction function.
-    pub muscles: Vec<Muscle>,
+    pub(crate) muscles: Vec<Muscle>,
     /// The mesoglea's Kelvin–Voigt time τ (viscosity over modulus), s: every element
     /// resists its rate of strain with τ times its stiffness.
-    pub damping_time: f32,
+    pub(crate) damping_time: f32,
     /// Each tentacle point's drag per unit of slip velocity, per metre of depth, N·s/m²
     /// (set each step from the point's last slip).
-    pub tentacle_drag: Vec<f32>,
+    pub(crate) tentacle_drag: Vec<f32>,
     drag_model: TentacleDrag,
     bell_solver: Solver,
     tentacle_solver: Solver,
@@ -68,7 +64,7 @@ impl Body {
     /// Builds the rest configuration with the aperture centre at `origin`, for fluid cells
     /// of size `h` (points sit about half a cell apart, as immersed boundaries need): the
     /// paper's Fig. 4, part by part (see `network`).
-    pub fn new(species: &Species, origin: Vec2, h: f32) -> Self {
+    pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
         let outline = rest_outline(species, h);
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();
@@ -88,14 +84,12 @@ impl Body {
             &mut hinges,
         );
 
-        let rest_points = points.clone();
         let bell_solver = Solver::new(points.len(), Solver::bell_order(&(0..bell_len)));
         let tentacle_solver = Solver::new(points.len(), Solver::tentacle_order(&tentacles));
         let scratch = vec![Vec2::ZERO; points.len()];
         let drag_model = TentacleDrag::new(species, seg_len);
         Self {
             points,
-            rest_points,
             bell: 0..bell_len,
             tentacles,
             springs,
@@ -111,35 +105,37 @@ impl Body {
     }
 
     /// The subumbrella's points, left margin to right margin.
-    pub fn bell_points(&self) -> &[Vec2] {
+    pub(crate) fn bell_points(&self) -> &[Vec2] {
         &self.points[self.bell.clone()]
     }
 
     /// Index of the apex within [`Self::bell_points`].
-    pub fn apex_index(&self) -> usize {
+    pub(crate) fn apex_index(&self) -> usize {
         self.bell.len() / 2
     }
 
     /// Centroid of the subumbrellar points.
-    pub fn bell_centroid(&self) -> Vec2 {
+    pub(crate) fn bell_centroid(&self) -> Vec2 {
         let bell = self.bell_points();
         bell.iter().sum::<Vec2>() / bell.len() as f32
     }
 
     /// Unit vector from the aperture centre to the apex.
-    pub fn axis(&self) -> Vec2 {
+    pub(crate) fn axis(&self) -> Vec2 {
         let bell = self.bell_points();
         let aperture = 0.5 * (bell[0] + bell[bell.len() - 1]);
         (bell[self.apex_index()] - aperture).normalize_or(Vec2::Y)
     }
 
     /// Area enclosed by the subumbrella and the aperture chord, m² per metre of depth.
-    pub fn bell_area(&self) -> f32 {
+    pub(crate) fn bell_area(&self) -> f32 {
         polygon_area(self.bell_points())
     }
 
-    /// Elastic forces at the current positions, N per metre of depth (explicit).
-    pub fn forces(&self, out: &mut [Vec2]) {
+    /// Elastic forces at the current positions, N per metre of depth (explicit; the
+    /// tests' reference for the implicit forces).
+    #[cfg(test)]
+    pub(crate) fn forces(&self, out: &mut [Vec2]) {
         out.iter_mut().for_each(|f| *f = Vec2::ZERO);
         for c in constraints(self, &self.points) {
             c.add_force(out);
@@ -160,7 +156,7 @@ impl Body {
     /// overdamped, `(ξ/dt + K) δ = F`. The water gets the drag back (`ξ/dt·δ`, in
     /// `forces`), the bell's margins get the tentacles' pull, so the whole body's forces
     /// still sum to zero; `slip` is `δ` on tentacle points (zero on the bell's).
-    pub fn implicit_forces(
+    pub(crate) fn implicit_forces(
         &mut self,
         predicted: &[Vec2],
         dt: f32,
@@ -229,7 +225,7 @@ impl Body {
     /// implicit solve assumed; a smooth displacement's high-pass is of order (spacing/
     /// wavelength)², so everything the water does see is left to the water. Like the
     /// filters of vortex-sheet methods (Krasny 1986), only unresolved modes are touched.
-    pub fn relax_unresolved(&mut self, forces: &[Vec2], dt2_over_mass: f32) {
+    pub(crate) fn relax_unresolved(&mut self, forces: &[Vec2], dt2_over_mass: f32) {
         let n = self.bell.len();
         if n < 3 {
             return;
@@ -253,7 +249,7 @@ impl Body {
     }
 
     /// Averages the body with its mirror image about the vertical line `x = centre`.
-    pub fn symmetrise(&mut self, centre: f32) {
+    pub(crate) fn symmetrise(&mut self, centre: f32) {
         let mirror = |p: Vec2| Vec2::new(2.0 * centre - p.x, p.y);
         let len = self.bell.len();
         for i in 0..len / 2 {
@@ -272,7 +268,7 @@ impl Body {
     }
 
     /// Whether every point is finite.
-    pub fn is_finite(&self) -> bool {
+    pub(crate) fn is_finite(&self) -> bool {
         self.points.iter().all(|p| p.is_finite())
     }
 

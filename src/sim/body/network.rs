@@ -95,9 +95,9 @@ pub(super) fn circumferential_muscles(
 /// The tentacles hanging from the aperture's two margins.
 pub(super) struct Tentacles {
     /// Indices of the left and right tentacle points, margin outwards (margin excluded).
-    pub ranges: [Range<usize>; 2],
+    pub(crate) ranges: [Range<usize>; 2],
     /// Length of one tentacle segment, m (0 without tentacles).
-    pub segment: f32,
+    pub(crate) segment: f32,
 }
 
 /// Hangs a tentacle straight down from each margin of the aperture (the first and last of

@@ -13,7 +13,7 @@ impl Fluid {
     /// the forward step interpolated between. Second order where the flow is smooth, plain
     /// Stam at extrema, so it stays unconditionally stable; it keeps the vortices a bell a
     /// few cells wide sheds from being smeared away by numerical viscosity.
-    pub fn advect(&mut self, dt: f32) {
+    pub(crate) fn advect(&mut self, dt: f32) {
         let n = self.n;
         let s = dt / self.h;
         if self.advection != Advection::MacCormack {

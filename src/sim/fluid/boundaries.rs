@@ -8,7 +8,7 @@ impl Fluid {
     /// rises smoothly to `rate` (1/s) at the boundary: vortices shed long ago fade into the
     /// stream before they reach the open end, where a zero-pressure boundary would
     /// reflect part of them.
-    pub fn set_sponge(&mut self, width: usize, rate: f32) {
+    pub(crate) fn set_sponge(&mut self, width: usize, rate: f32) {
         let w = width as f32;
         let ramp = |d: f32| {
             if w <= 0.0 || d >= w {
@@ -30,7 +30,7 @@ impl Fluid {
     }
 
     /// Relaxes the velocity in the absorbing layer towards the stream.
-    pub fn absorb(&mut self, dt: f32) {
+    pub(crate) fn absorb(&mut self, dt: f32) {
         // Implicit Euler: stable for any rate and step.
         for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
             *u /= 1.0 + s * dt;

@@ -4,7 +4,7 @@
 use super::Fluid;
 
 /// Most explicit diffusion sweeps in one step (see [`Fluid::diffuse`]).
-pub const MAX_DIFFUSION_SWEEPS: usize = 32;
+pub(crate) const MAX_DIFFUSION_SWEEPS: usize = 32;
 
 impl Fluid {
     /// Viscosity, explicit, sub-stepped where `ν·dt/h²` would be unstable. For sea water at
@@ -12,7 +12,7 @@ impl Fluid {
     /// [`MAX_DIFFUSION_SWEEPS`] sweeps: beyond, the viscosity is capped at what they
     /// resolve (`32 · 0.2 · h²/dt`; Re ≈ 0.3 for the default species, where nothing swims
     /// anyway), so a species as viscous as honey costs a bounded step instead of hanging.
-    pub fn diffuse(&mut self, dt: f32) {
+    pub(crate) fn diffuse(&mut self, dt: f32) {
         let alpha = self.nu * dt / (self.h * self.h);
         if alpha.is_nan() || alpha <= 0.0 {
             return;

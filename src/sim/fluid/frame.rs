@@ -7,7 +7,7 @@ impl Fluid {
     /// The frame speeds up by `dv` (m/s, along y): every relative velocity drops by it, the
     /// world's water is untouched (a Galilean change of frame; uniform, so still
     /// divergence-free).
-    pub fn change_frame(&mut self, dv: f32) {
+    pub(crate) fn change_frame(&mut self, dv: f32) {
         if dv == 0.0 {
             return;
         }
@@ -17,7 +17,7 @@ impl Fluid {
 
     /// Shifts every field across the channel by `dx` whole cells (-1..=1) so that the
     /// content moves by `-dx·h`; still water (the stream) flows in at the opened side.
-    pub fn shift_across(&mut self, dx: i32) {
+    pub(crate) fn shift_across(&mut self, dx: i32) {
         let n = self.n;
         shift_field(&mut self.u, &mut self.scratch_u, n + 1, n, dx, 0.0);
         shift_field(&mut self.v, &mut self.scratch_v, n, n + 1, dx, self.stream);

@@ -8,7 +8,7 @@ use glam::Vec2;
 
 impl Fluid {
     /// Adds the accumulated force density, then clears it.
-    pub fn apply_force(&mut self, dt: f32) {
+    pub(crate) fn apply_force(&mut self, dt: f32) {
         let scale = dt / self.rho;
         for (u, f) in self.u.iter_mut().zip(self.force_u.iter_mut()) {
             *u += scale * *f;
@@ -31,7 +31,7 @@ impl Fluid {
 
     /// Sample of one component under the fluid's kernel. Outside the box, the nearest
     /// faces' values.
-    pub fn sample_component(&self, c: Component, p: Vec2) -> f32 {
+    pub(crate) fn sample_component(&self, c: Component, p: Vec2) -> f32 {
         let field = match c {
             Component::U => &self.u,
             Component::V => &self.v,
@@ -42,24 +42,12 @@ impl Fluid {
     /// The faces of component `c` around `p` and their weights under the fluid's
     /// [`Kernel`] (summing to 1). Interpolation and force spreading both use this, which
     /// makes them adjoint.
-    pub fn stencil(&self, c: Component, p: Vec2) -> Stencil {
+    pub(crate) fn stencil(&self, c: Component, p: Vec2) -> Stencil {
         let n = self.n;
         let (gx, gy, nx, ny) = match c {
             Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
             Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
         };
         kernel::stencil(self.kernel, gx, gy, nx, ny, self.kernel_stretch)
-    }
-
-    /// Spreads a point force (N per metre of depth) onto the force density of the faces
-    /// around `p` with the stencil's weights: the total over the grid times `h²` is `force`.
-    pub fn spread_force(&mut self, p: Vec2, force: Vec2) {
-        let inv_area = 1.0 / (self.h * self.h);
-        for (index, w) in self.stencil(Component::U, p).iter() {
-            self.force_u[index] += w * force.x * inv_area;
-        }
-        for (index, w) in self.stencil(Component::V, p).iter() {
-            self.force_v[index] += w * force.y * inv_area;
-        }
     }
 }

@@ -5,7 +5,7 @@ use super::Fluid;
 
 impl Fluid {
     /// max |u| over the grid (cell-centred), m/s; NaN if any velocity is NaN.
-    pub fn speed_max(&self) -> f32 {
+    pub(crate) fn speed_max(&self) -> f32 {
         let n = self.n;
         let (mut max2, mut nan) = (0.0f32, false);
         for j in 0..n {
@@ -25,7 +25,7 @@ impl Fluid {
     /// A bound on the speed, m/s: `√(max|u|² + max|v|²)` over the faces, never below
     /// [`Fluid::speed_max`]; two plain reductions (no averaging, no square roots per
     /// cell), cheap enough for the step's Courant check. NaN if any velocity is NaN.
-    pub fn speed_bound(&self) -> f32 {
+    pub(crate) fn speed_bound(&self) -> f32 {
         let largest = |field: &[f32]| {
             let (mut max, mut nan) = (0.0f32, false);
             for x in field {

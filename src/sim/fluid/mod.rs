@@ -30,13 +30,12 @@ mod symmetry;
 #[cfg(test)]
 mod tests;
 
-pub use crate::species::{Advection, Kernel};
-pub use diffusion::MAX_DIFFUSION_SWEEPS;
+pub(crate) use crate::species::{Advection, Kernel};
 
 use super::pressure::PoissonSolver;
 
 /// The water of one slice: a staggered (MAC) grid of velocities with pressure solved
-/// exactly (see [`Fluid::step`] for the order of a step).
+/// exactly (see `Fluid::step` for the order of a step).
 #[derive(Clone)]
 pub struct Fluid {
     /// Cells per side.
@@ -48,26 +47,26 @@ pub struct Fluid {
     /// Vertical velocity on horizontal faces, `n × (n + 1)`, index `j * n + i`.
     pub v: Vec<f32>,
     /// Force density accumulated for the next step, N/m³, on the `u` faces.
-    pub force_u: Vec<f32>,
+    pub(crate) force_u: Vec<f32>,
     /// Force density accumulated for the next step, N/m³, on the `v` faces.
-    pub force_v: Vec<f32>,
+    pub(crate) force_v: Vec<f32>,
     /// Kinematic viscosity, m²/s.
-    pub nu: f32,
+    pub(crate) nu: f32,
     /// Density, kg/m³.
-    pub rho: f32,
+    pub(crate) rho: f32,
     /// How velocities are carried along (see [`Advection`]).
-    pub advection: Advection,
+    pub(crate) advection: Advection,
     /// How points read and spread onto the faces (see [`Kernel`]).
-    pub kernel: Kernel,
+    pub(crate) kernel: Kernel,
     /// Hold the flow mirror-symmetric about [`Fluid::axis`] (averaged before each
     /// projection, so what the projection leaves is divergence-free).
-    pub mirror: bool,
+    pub(crate) mirror: bool,
     /// How many times wider than three cells the kernel is (at least 1): the bell's
     /// `boundary_width` over the grid's three cells.
-    pub kernel_stretch: f32,
+    pub(crate) kernel_stretch: f32,
     /// Vertical velocity of still water relative to the frame, m/s (minus the frame's
     /// velocity): what enters at the top, and what the absorbing layer relaxes towards.
-    pub stream: f32,
+    pub(crate) stream: f32,
     /// Absorbing layer at the bottom (wake) end: damping rate (1/s) per face.
     sponge_u: Vec<f32>,
     sponge_v: Vec<f32>,
@@ -83,7 +82,7 @@ pub struct Fluid {
 
 /// Which staggered component a sample refers to.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum Component {
+pub(crate) enum Component {
     /// Horizontal velocity, on the vertical faces.
     U,
     /// Vertical velocity, on the horizontal faces.
@@ -93,7 +92,7 @@ pub enum Component {
 impl Fluid {
     /// Still water on `n`×`n` cells of side `h` (m), kinematic viscosity `nu` (m²/s),
     /// density `rho` (kg/m³).
-    pub fn new(n: usize, h: f32, nu: f32, rho: f32) -> Self {
+    pub(crate) fn new(n: usize, h: f32, nu: f32, rho: f32) -> Self {
         let faces = (n + 1) * n;
         Self {
             n,
@@ -128,7 +127,7 @@ impl Fluid {
     }
 
     /// Heap bytes of the fields and scratch buffers.
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         let f32s = [
             &self.u,
             &self.v,
@@ -160,7 +159,7 @@ impl Fluid {
     /// comes first, so the force acts on the faces it was spread to and is not carried
     /// downstream before the projection sees it. The sponge and the mirror come before the
     /// projection so that what the step leaves is divergence-free.
-    pub fn step(&mut self, dt: f32) {
+    pub(crate) fn step(&mut self, dt: f32) {
         self.advect(dt);
         self.apply_force(dt);
         self.diffuse(dt);
@@ -172,7 +171,7 @@ impl Fluid {
     }
 
     /// Still water: every velocity the stream's, no pending forces.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         for f in [&mut self.u, &mut self.force_u, &mut self.force_v] {
             f.fill(0.0);
         }

@@ -5,7 +5,7 @@ use super::Fluid;
 
 impl Fluid {
     /// Removes the divergent part of the velocity with an exact Poisson solve.
-    pub fn project(&mut self) {
+    pub(crate) fn project(&mut self) {
         let (n, h) = (self.n, self.h);
         // φ = div u per cell (as `divergence` computes it), row by row.
         for j in 0..n {
@@ -39,7 +39,7 @@ impl Fluid {
     }
 
     /// Discrete divergence of cell `(i, j)`, 1/s.
-    pub fn divergence(&self, i: usize, j: usize) -> f32 {
+    pub(crate) fn divergence(&self, i: usize, j: usize) -> f32 {
         let n = self.n;
         let du = self.u[j * (n + 1) + i + 1] - self.u[j * (n + 1) + i];
         let dv = self.v[(j + 1) * n + i] - self.v[j * n + i];
@@ -48,7 +48,7 @@ impl Fluid {
 
     /// max |div u| after the last projection, 1/s.
     /// Measured on demand, so the step does not pay for a diagnostic.
-    pub fn divergence_max(&self) -> f32 {
+    pub(crate) fn divergence_max(&self) -> f32 {
         let n = self.n;
         (0..n * n)
             .map(|c| self.divergence(c % n, c / n).abs())

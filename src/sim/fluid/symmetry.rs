@@ -16,7 +16,7 @@ impl Fluid {
     /// Averages the flow with its mirror image about [`Fluid::axis`]. On even grids the
     /// axis is half a cell off the box's centre: the faces whose mirror is outside the box
     /// or on a wall are left as they are.
-    pub fn symmetrise(&mut self) {
+    pub(crate) fn symmetrise(&mut self) {
         let n = self.n;
         let c = n / 2;
         for j in 0..n {

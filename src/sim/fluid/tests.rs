@@ -1,7 +1,15 @@
 //! The fluid on its own: projection, spreading, advection, viscosity.
 
 use super::*;
+use crate::sim::coupling::Coupling;
 use glam::Vec2;
+
+/// Spreads point forces as the slice does: through the points' stencils (`Coupling`).
+fn spread(f: &mut Fluid, points: &[Vec2], forces: &[Vec2]) {
+    let mut coupling = Coupling::default();
+    coupling.locate(f, points);
+    coupling.spread(f, forces);
+}
 
 fn swirl(n: usize) -> Fluid {
     let mut f = Fluid::new(n, 0.01, 1.3e-6, 1000.0);
@@ -55,9 +63,7 @@ fn spreading_conserves_total_force() {
         Vec2::new(-2.0, 0.7),
         Vec2::new(0.01, 0.5),
     ];
-    for (p, force) in points.iter().zip(&forces) {
-        f.spread_force(*p, *force);
-    }
+    spread(&mut f, &points, &forces);
     let area = f.h * f.h;
     let total = Vec2::new(f.force_u.iter().sum::<f32>(), f.force_v.iter().sum::<f32>()) * area;
     let expected: Vec2 = forces.iter().sum();
@@ -70,8 +76,17 @@ fn interpolation_and_spreading_are_adjoint() {
     let mut f = swirl(24);
     let p = Vec2::new(0.0937, 0.1411);
     let force = Vec2::new(0.7, -0.3);
-    let lhs = f.velocity_at(p).dot(force);
-    f.spread_force(p, force);
+    let mut coupling = Coupling::default();
+    coupling.locate(&f, &[p]);
+    let mut read = [Vec2::ZERO];
+    coupling.interpolate(&f, &mut read);
+    assert_eq!(
+        read[0],
+        f.velocity_at(p),
+        "the bell and the arms read alike"
+    );
+    let lhs = read[0].dot(force);
+    coupling.spread(&mut f, &[force]);
     let area = f.h * f.h;
     let rhs: f32 = f.u.iter().zip(&f.force_u).map(|(u, g)| u * g).sum::<f32>() * area
         + f.v.iter().zip(&f.force_v).map(|(v, g)| v * g).sum::<f32>() * area;
