@@ -122,3 +122,40 @@ fn viscosity_dissipates_energy() {
     assert!(f.kinetic_energy() < e0);
     assert!(f.is_finite());
 }
+
+#[test]
+fn viscosity_decays_a_mode_at_the_discrete_and_the_analytic_rate() {
+    // u = sin(π·κ·i/n), uniform along y, vanishes on both side walls: an eigenmode of the
+    // explicit sweep, which multiplies it by 1 − 4a·sin²(πκ/2n) with a = ν·dt/(h²·sweeps),
+    // and of the continuum, where it decays as exp(−ν·k²·t), k = πκ/(n·h).
+    let (n, h, kappa) = (32, 0.01, 2.0);
+    let mut f = Fluid::new(n, h, 0.0, 1000.0);
+    for j in 0..n {
+        for i in 0..=n {
+            f.u[j * (n + 1) + i] = (std::f32::consts::PI * kappa * i as f32 / n as f32).sin();
+        }
+    }
+    f.nu = 2e-4;
+    let (dt, steps) = (0.25, 10);
+    let alpha = f.nu * dt / (h * h);
+    let sweeps = (alpha / 0.2).ceil();
+    let e0 = f.kinetic_energy();
+    for _ in 0..steps {
+        f.diffuse(dt);
+    }
+    let decay = (f.kinetic_energy() / e0).ln();
+    let theta = std::f32::consts::PI * kappa / (2.0 * n as f32);
+    let per_sweep = 1.0 - 4.0 * alpha / sweeps * theta.sin().powi(2);
+    let discrete = 2.0 * sweeps * steps as f32 * per_sweep.ln();
+    let k = std::f32::consts::PI * kappa / (n as f32 * h);
+    let analytic = -2.0 * f.nu * k * k * dt * steps as f32;
+    println!("ln(E/E0): measured {decay}, discrete {discrete}, analytic {analytic}");
+    assert!(
+        (decay / discrete - 1.0).abs() < 1e-3,
+        "measured {decay}, the sweep's exact factor {discrete}"
+    );
+    assert!(
+        (decay / analytic - 1.0).abs() < 0.02,
+        "measured {decay}, exp(-2νk²t) {analytic}"
+    );
+}
