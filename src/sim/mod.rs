@@ -1,4 +1,7 @@
 //! The 2D slice simulation (paper sections 3.2–3.3).
+//!
+//! The physical model, its units and the published figures it is checked against are in
+//! `docs/physics.md`; the numerical choices and what they measured in `docs/numerics.md`.
 
 mod banded;
 pub(crate) mod body;

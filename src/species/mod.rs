@@ -36,7 +36,7 @@ pub struct Species {
     /// Display name.
     pub name: String,
 
-    // --- Water (DESIGN.md section 3: the SI reading of the paper's table) ---
+    // --- Water (`docs/physics.md` section 2: the SI reading of the paper's table) ---
     /// Fluid cells per side of the square slice domain (paper: 100 over 10 diameters; the
     /// default 60 over 6 keeps its ten cells per diameter).
     pub grid_resolution: u32,

@@ -21,7 +21,7 @@ impl Species {
             thickness: 0.004,
             margin_thickness_ratio: 0.3,
             elastic_modulus: 1186.0,
-            // Plate bending of the apex wall, E·ϑ³/12 per 2 mm hinge (DESIGN.md section 3).
+            // Plate bending of the apex wall, E·ϑ³/12 per 2 mm hinge (`docs/physics.md` §2).
             angular_stiffness: 1186.0 * 0.004 * 0.004 * 0.004 / 12.0 / 0.002,
             mesoglea_resilience: 1.0,
             muscle_modulus: 400.0e3,
