@@ -263,12 +263,14 @@ impl SliceSim {
         }
     }
 
-    /// The fluid grid (for debug overlays and tests).
+    /// The fluid grid, for debug overlays and measurements ([`inspect`](crate::sim::inspect):
+    /// not semver-stable).
     pub fn fluid(&self) -> &Fluid {
         &self.fluid
     }
 
-    /// The spring-mass body.
+    /// The spring-mass body, for debug overlays and measurements
+    /// ([`inspect`](crate::sim::inspect): not semver-stable).
     pub fn body(&self) -> &Body {
         &self.body
     }
