@@ -1,5 +1,8 @@
 //! The enumerated fields of a species: the gonads' shape and two numerical choices kept
 //! with the species because its grid resolution is too.
+//!
+//! Their reflected type paths stay `bevy_jellyfish::species::*`, where they lived before
+//! this file split off, so that nothing reflected by path changes.
 
 use serde::{Deserialize, Serialize};
 
@@ -7,6 +10,7 @@ use serde::{Deserialize, Serialize};
 /// canals.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
 pub enum GonadShape {
     /// A horseshoe opening towards the centre (Aurelia's four-leaf clover).
     #[default]
@@ -26,6 +30,7 @@ impl GonadShape {
 /// grid resolution is too.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
 pub enum Advection {
     /// Stam's semi-Lagrangian step: the cheapest and the most regular. Its numerical
     /// viscosity grows with the cell size: at grid 100 the default bell swims about a
@@ -55,6 +60,7 @@ impl Advection {
 /// force back onto them (the same weights both ways; see `sim::kernel`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
 pub enum Kernel {
     /// Roma, Peskin & Berger's three-point kernel (1999): nearly translation invariant, so
     /// the stroke does not depend on where the bell sits in a cell.
