@@ -7,35 +7,40 @@ use super::symmetry::mirror;
 use super::{Advection, Fluid};
 
 impl Fluid {
-    /// Self-advection, by Stam's semi-Lagrangian step or by MacCormack's method (Selle et
-    /// al. 2008, see [`Advection`]): a semi-Lagrangian step
-    /// forward, one back, and half the round-trip error corrected, clamped to the values
-    /// the forward step interpolated between. Second order where the flow is smooth, plain
-    /// Stam at extrema, so it stays unconditionally stable; it keeps the vortices a bell a
-    /// few cells wide sheds from being smeared away by numerical viscosity.
+    /// Self-advection by the species' scheme ([`Advection`]), then the walls again.
     pub(crate) fn advect(&mut self, dt: f32) {
-        let n = self.n;
         let s = dt / self.h;
-        if self.advection != Advection::MacCormack {
-            let cubic = self.advection == Advection::Cubic;
-            semi_lagrangian(
-                [&self.u, &self.v],
-                [&self.u, &self.v],
-                n,
-                s,
-                [&mut self.scratch_u, &mut self.scratch_v],
-                if cubic {
-                    Sample::Cubic
-                } else {
-                    Sample::Linear(None)
-                },
-                self.mirror,
-            );
-            std::mem::swap(&mut self.u, &mut self.scratch_u);
-            std::mem::swap(&mut self.v, &mut self.scratch_v);
-            self.enforce_walls();
-            return;
+        match self.advection {
+            Advection::SemiLagrangian => self.advect_once(s, Sample::Linear(None)),
+            Advection::Cubic => self.advect_once(s, Sample::Cubic),
+            Advection::MacCormack => self.advect_maccormack(s),
         }
+        self.enforce_walls();
+    }
+
+    /// Stam's semi-Lagrangian step: each face takes the value found by tracing the flow
+    /// back `s = dt/h` cells per unit velocity, sampled by `sample`.
+    fn advect_once(&mut self, s: f32, sample: Sample) {
+        semi_lagrangian(
+            [&self.u, &self.v],
+            [&self.u, &self.v],
+            self.n,
+            s,
+            [&mut self.scratch_u, &mut self.scratch_v],
+            sample,
+            self.mirror,
+        );
+        std::mem::swap(&mut self.u, &mut self.scratch_u);
+        std::mem::swap(&mut self.v, &mut self.scratch_v);
+    }
+
+    /// MacCormack's method (Selle et al. 2008): a semi-Lagrangian step forward, one back,
+    /// and half the round-trip error corrected, clamped to the values the forward step
+    /// interpolated between. Second order where the flow is smooth, plain Stam at extrema,
+    /// so it stays unconditionally stable; it keeps the vortices a bell a few cells wide
+    /// sheds from being smeared away by numerical viscosity.
+    fn advect_maccormack(&mut self, s: f32) {
+        let n = self.n;
         // Forward: scratch = A(u); bounds = the corner values it interpolated between.
         semi_lagrangian(
             [&self.u, &self.v],
@@ -68,7 +73,6 @@ impl Fluid {
         }
         std::mem::swap(&mut self.u, &mut self.back_u);
         std::mem::swap(&mut self.v, &mut self.back_v);
-        self.enforce_walls();
     }
 }
 
