@@ -1,4 +1,5 @@
-//! Cost of the slice simulation (DESIGN.md section 6), on one core.
+//! Cost of the slice simulation, on one core, against the target in `docs/numerics.md`
+//! ("Cost").
 //!
 //! - `coupled_step/N`: one fixed step of the default species (fluid + body + coupling) at
 //!   grid N (60 is the default, ten cells per diameter; 100 the paper's grid);

@@ -170,9 +170,40 @@ fn within_joint_limits(s: &mut Species) {
     }
 }
 
-/// Runs a valid species for `frames` 60 Hz frames, meshing each; returns the wall time.
+/// What this thread has spent on a core: the Linux scheduler's count
+/// (`/proc/thread-self/schedstat`, nanoseconds), so that a budget for one core holds
+/// whatever else the machine runs (on a shared 2-core machine the wall time of the same
+/// run doubled while another build ran); the wall clock where the count is unavailable.
+struct CpuClock {
+    wall: Instant,
+    cpu: Option<u64>,
+}
+
+impl CpuClock {
+    fn start() -> Self {
+        Self {
+            wall: Instant::now(),
+            cpu: thread_cpu_ns(),
+        }
+    }
+
+    fn elapsed(&self) -> Duration {
+        match (self.cpu, thread_cpu_ns()) {
+            (Some(a), Some(b)) => Duration::from_nanos(b.saturating_sub(a)),
+            _ => self.wall.elapsed(),
+        }
+    }
+}
+
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// Runs a valid species for `frames` 60 Hz frames, meshing each; returns the time it took
+/// this thread's core ([`CpuClock`]).
 fn run(species: &Species, frames: usize, seed: u64) -> Duration {
-    let start = Instant::now();
+    let start = CpuClock::start();
     let mut sim = SliceSim::new(species).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
     let mut mesh = JellyMesh::new();
     for frame in 0..frames {

@@ -1,11 +1,12 @@
-//! Properties of the coupled slice simulation, through the headless API of DESIGN.md §4.
+//! Properties of the coupled slice simulation, through the headless API (`docs/usage.md`).
+//! What each long check requires, and where its numbers come from: `docs/physics.md`.
 //! Fast ones run by default; the long ones (calibration, convergence, 1000 strokes) are
 //! `#[ignore]`d: `cargo test --release --no-default-features --test slice -- --ignored
 //! --nocapture` prints every figure they check.
 
 mod common;
 
-use bevy_jellyfish::sim::body::{Outline, contains};
+use bevy_jellyfish::sim::inspect::{Outline, contains};
 use bevy_jellyfish::{SliceSim, Species};
 use glam::Vec2;
 
@@ -438,7 +439,7 @@ fn the_stroke_converges_with_the_grid() {
 #[ignore = "long: 20 strokes at Re 1 and at sea water's"]
 fn a_stroke_hardly_swims_where_viscosity_rules() {
     let base = Species::aurelia();
-    // Re = ρ·f·D²/μ (REFERENCES.md): about 880 for the default in sea water.
+    // Re = ρ·f·D²/μ (IB2d's definition, `docs/physics.md`): about 880 for the default in sea water.
     let viscosity = base.density * base.contraction_frequency * base.diameter * base.diameter;
     let syrup = Species {
         viscosity,

@@ -2,14 +2,12 @@
 //! around the axis, drawn after the tentacles in the same buffers (one mesh, one draw).
 //!
 //! Tube 0 is the manubrium, if the species has one: round, on the axis, over the chains'
-//! first [`stalk_fraction`] and widening to the mouth. The arms follow, arm `a` at
+//! first `stalk_fraction` and widening to the mouth. The arms follow, arm `a` at
 //! σ = 2π·a/count over the rest of the chains: blades wide in the radial direction and
 //! thin across, narrow at the mouth, widest a third of the way down, tapering to the tip,
 //! with edges ruffled in waves about two blade widths long (`oral_arm_frill`), but no more
 //! than one wave to eight rings. Each tube has a tentacle's layout ([`TentacleLayout`])
 //! with [`ORAL_SIDES`] sides and twice the rings.
-//!
-//! [`stalk_fraction`]: crate::sim::oral_arms::stalk_fraction
 
 use super::buffers::SurfaceBuffers;
 use super::discs::Disc;

@@ -7,7 +7,7 @@
 
 /// A symmetric positive-definite banded matrix, factored in place by Cholesky.
 #[derive(Clone)]
-pub struct BandedSpd {
+pub(crate) struct BandedSpd {
     n: usize,
     /// Half-bandwidth: entries with `|row - col| > band` are zero.
     band: usize,
@@ -17,7 +17,7 @@ pub struct BandedSpd {
 
 impl BandedSpd {
     /// An `n`×`n` zero matrix with `band` diagonals above the main one.
-    pub fn new(n: usize, band: usize) -> Self {
+    pub(crate) fn new(n: usize, band: usize) -> Self {
         Self {
             n,
             band,
@@ -26,7 +26,7 @@ impl BandedSpd {
     }
 
     /// Sets the matrix to `diagonal` times the identity.
-    pub fn clear_to_diagonal(&mut self, diagonal: f64) {
+    pub(crate) fn clear_to_diagonal(&mut self, diagonal: f64) {
         self.lower.iter_mut().for_each(|x| *x = 0.0);
         for row in 0..self.n {
             self.lower[row * (self.band + 1)] = diagonal;
@@ -35,7 +35,7 @@ impl BandedSpd {
 
     /// Adds `value` at `(row, col)` of the symmetric matrix (give each off-diagonal pair
     /// once, either way round).
-    pub fn add(&mut self, row: usize, col: usize, value: f64) {
+    pub(crate) fn add(&mut self, row: usize, col: usize, value: f64) {
         let (r, c) = if row >= col { (row, col) } else { (col, row) };
         debug_assert!(r - c <= self.band, "entry outside the band");
         self.lower[r * (self.band + 1) + (r - c)] += value;
@@ -43,7 +43,7 @@ impl BandedSpd {
 
     /// Factorises in place (Cholesky, `A = L·Lᵀ`) and solves `A x = rhs`, overwriting
     /// `rhs` with `x`. Returns false if the matrix was not positive definite.
-    pub fn factor_and_solve(&mut self, rhs: &mut [f64]) -> bool {
+    pub(crate) fn factor_and_solve(&mut self, rhs: &mut [f64]) -> bool {
         let (n, b) = (self.n, self.band);
         let w = b + 1;
         for i in 0..n {

@@ -12,14 +12,14 @@ use glam::Vec2;
 
 /// The stencils of a set of points on the grid, per velocity component.
 #[derive(Clone, Default)]
-pub struct Coupling {
+pub(crate) struct Coupling {
     u: Vec<Stencil>,
     v: Vec<Stencil>,
 }
 
 impl Coupling {
     /// Finds the stencils of `points` on `fluid`'s grid.
-    pub fn locate(&mut self, fluid: &Fluid, points: &[Vec2]) {
+    pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2]) {
         self.u.clear();
         self.v.clear();
         self.u
@@ -29,7 +29,7 @@ impl Coupling {
     }
 
     /// Fluid velocity at each located point.
-    pub fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
+    pub(crate) fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
         let sample = |s: &Stencil, field: &[f32]| s.iter().map(|(i, w)| w * field[i]).sum();
         for ((o, su), sv) in out.iter_mut().zip(&self.u).zip(&self.v) {
             *o = Vec2::new(sample(su, &fluid.u), sample(sv, &fluid.v));
@@ -37,7 +37,7 @@ impl Coupling {
     }
 
     /// Adds each located point's force (N per metre of depth) to the fluid's force density.
-    pub fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
+    pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
         let inv_area = 1.0 / (fluid.h * fluid.h);
         for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
             for (i, w) in su.iter() {

@@ -14,7 +14,7 @@
 //! continuous problem instead of thinning the bell's hold on the water; with a kernel
 //! three cells wide at every grid, the stroke grew by a quarter with each 1.5× refinement.
 
-pub use crate::species::Kernel;
+pub(crate) use crate::species::Kernel;
 
 /// Most faces a stencil reaches along one axis (a kernel stretched four times).
 const MAX_TAPS: usize = 13;
@@ -30,7 +30,7 @@ struct Taps {
 /// The faces of one component around a point, and their weights (summing to 1): the
 /// product of one set of taps across and one along.
 #[derive(Clone, Copy, Debug)]
-pub struct Stencil {
+pub(crate) struct Stencil {
     x: Taps,
     y: Taps,
     row: usize,
@@ -38,7 +38,7 @@ pub struct Stencil {
 
 impl Stencil {
     /// `(face index, weight)` pairs.
-    pub fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
         let (x, y, row) = (&self.x, &self.y, self.row);
         (0..y.len).flat_map(move |b| {
             (0..x.len).map(move |a| (y.index[b] * row + x.index[a], x.weight[a] * y.weight[b]))
@@ -122,7 +122,14 @@ fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
 
 /// The stencil of a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array
 /// of faces (row-major), the kernel stretched `stretch` times (see the module).
-pub fn stencil(kernel: Kernel, gx: f32, gy: f32, nx: usize, ny: usize, stretch: f32) -> Stencil {
+pub(crate) fn stencil(
+    kernel: Kernel,
+    gx: f32,
+    gy: f32,
+    nx: usize,
+    ny: usize,
+    stretch: f32,
+) -> Stencil {
     Stencil {
         x: taps(kernel, gx, nx, stretch),
         y: taps(kernel, gy, ny, stretch),

@@ -1,15 +1,19 @@
 //! The 2D slice simulation (paper sections 3.2–3.3).
+//!
+//! The physical model, its units and the published figures it is checked against are in
+//! `docs/physics.md`; the numerical choices and what they measured in `docs/numerics.md`.
 
 mod banded;
-pub mod body;
+pub(crate) mod body;
 pub mod clock;
-pub mod coupling;
+pub(crate) mod coupling;
 pub mod cycle;
-pub mod fluid;
-pub mod kernel;
-pub mod muscle;
-pub mod oral_arms;
-pub mod pressure;
+pub(crate) mod fluid;
+pub mod inspect;
+pub(crate) mod kernel;
+pub(crate) mod muscle;
+pub(crate) mod oral_arms;
+pub(crate) mod pressure;
 mod slice;
 pub mod tank;
 pub(crate) mod trilinear;
@@ -34,7 +38,7 @@ pub struct SliceView<'a> {
     /// Left and right tentacle chains; each starts at its margin point (`bell[0]`, resp.
     /// `bell[len-1]`) and hangs away from the bell.
     pub tentacles: [&'a [Vec2]; 2],
-    /// Left and right chains of the manubrium and oral arms ([`oral_arms`]), from beside
+    /// Left and right chains of the manubrium and oral arms, from beside
     /// the subumbrellar apex down; empty for a species without them.
     pub oral_arms: [&'a [Vec2]; 2],
 }

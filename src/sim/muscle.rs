@@ -10,14 +10,14 @@ use crate::species::Species;
 
 /// The contraction functions of one species.
 #[derive(Clone, Copy, Debug)]
-pub struct MuscleDrive {
+pub(crate) struct MuscleDrive {
     /// Fully contracted length over rest length.
-    pub ratio: f32,
+    pub(crate) ratio: f32,
     /// Fraction of the cycle spent contracting.
-    pub duty: f32,
+    pub(crate) duty: f32,
     /// How much later and more slowly the springs nearer the aperture re-expand (0: in
     /// unison), `Species::expansion_stagger`.
-    pub stagger: f32,
+    pub(crate) stagger: f32,
 }
 
 /// How far into the expansion window the slowest (margin) spring starts re-expanding.
@@ -27,7 +27,7 @@ const UNISON_EXPANSION: f32 = 0.5;
 
 impl MuscleDrive {
     /// The rhythm a species asks for.
-    pub fn new(species: &Species) -> Self {
+    pub(crate) fn new(species: &Species) -> Self {
         Self {
             ratio: species.contraction_ratio,
             duty: species.contraction_duty,
@@ -37,7 +37,7 @@ impl MuscleDrive {
 
     /// Rest-length factor in `[ratio, 1]` at cycle phase `phase` (any real; period 1) for
     /// a spring at `level` (0 near the apex, 1 at the margin).
-    pub fn rest_factor(&self, phase: f32, level: f32) -> f32 {
+    pub(crate) fn rest_factor(&self, phase: f32, level: f32) -> f32 {
         let phi = phase.rem_euclid(1.0);
         let depth = 1.0 - self.ratio;
         if phi < self.duty {

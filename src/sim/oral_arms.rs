@@ -16,22 +16,22 @@ use crate::species::Species;
 use glam::Vec2;
 
 /// Points per chain, root to tip.
-pub const POINTS: usize = 16;
+pub(crate) const POINTS: usize = 16;
 /// Time over which a limp arm swings back towards hanging at rest when the water is still,
 /// s: long against a stroke, so the pulse's jet and inflow move the arms visibly.
-pub const ARM_RELAXATION: f32 = 0.6;
+pub(crate) const ARM_RELAXATION: f32 = 0.6;
 /// The same for the manubrium, a muscular tube: it sways, but little.
-pub const MANUBRIUM_RELAXATION: f32 = 0.08;
+pub(crate) const MANUBRIUM_RELAXATION: f32 = 0.08;
 /// The arms' rest direction leans away from the axis by this angle, rad: they hang in a
 /// loose cone, as in photographs, rather than in one bundle.
-pub const SPLAY: f32 = 0.3;
+pub(crate) const SPLAY: f32 = 0.3;
 
 /// The two chains and how they hang.
 #[derive(Clone, Debug, Default)]
-pub struct OralArms {
+pub(crate) struct OralArms {
     /// Left and right chains; point 0 is the root beside the subumbrellar apex. Empty when
     /// the species has neither manubrium nor arms.
-    pub chains: [Vec<Vec2>; 2],
+    pub(crate) chains: [Vec<Vec2>; 2],
     /// Distance between neighbouring points, m.
     segment: f32,
     /// The roots' distance from the axis (the manubrium's radius), m.
@@ -43,7 +43,7 @@ pub struct OralArms {
 impl OralArms {
     /// Chains hanging at rest from `apex`, with the bell's `axis` pointing from the
     /// aperture to the apex.
-    pub fn new(species: &Species, apex: Vec2, axis: Vec2) -> Self {
+    pub(crate) fn new(species: &Species, apex: Vec2, axis: Vec2) -> Self {
         let total = species.manubrium_length + arm_length(species);
         if total <= 0.0 {
             return Self::default();
@@ -66,7 +66,14 @@ impl OralArms {
 
     /// One step of `dt` seconds in `fluid`'s water, the bell's apex and axis where they are
     /// now. With `mirror` (the axis line's x), the right chain is the left one's mirror image.
-    pub fn step(&mut self, fluid: &Fluid, apex: Vec2, axis: Vec2, dt: f32, mirror: Option<f32>) {
+    pub(crate) fn step(
+        &mut self,
+        fluid: &Fluid,
+        apex: Vec2,
+        axis: Vec2,
+        dt: f32,
+        mirror: Option<f32>,
+    ) {
         let limp = (dt / ARM_RELAXATION).clamp(0.0, 1.0);
         let stiff = (dt / MANUBRIUM_RELAXATION).clamp(0.0, 1.0);
         let sides = if mirror.is_some() { 1 } else { 2 };
@@ -102,17 +109,17 @@ impl OralArms {
     }
 
     /// Moves every point by `d` (the box shifted under them).
-    pub fn shift(&mut self, d: Vec2) {
+    pub(crate) fn shift(&mut self, d: Vec2) {
         self.chains.iter_mut().flatten().for_each(|p| *p += d);
     }
 
     /// Whether every point is finite.
-    pub fn is_finite(&self) -> bool {
+    pub(crate) fn is_finite(&self) -> bool {
         self.chains.iter().flatten().all(|p| p.is_finite())
     }
 
     /// Heap bytes held.
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.chains.iter().map(|c| c.capacity() * 8).sum()
     }
 
@@ -152,7 +159,7 @@ fn stalk_index(species: &Species) -> usize {
 
 /// Where along the chains the manubrium ends and the arms begin, 0 to 1 (the renderer
 /// draws the manubrium over `[0, f]` and the arms over `[f, 1]`).
-pub fn stalk_fraction(species: &Species) -> f32 {
+pub(crate) fn stalk_fraction(species: &Species) -> f32 {
     stalk_index(species) as f32 / (POINTS - 1) as f32
 }
 

@@ -32,7 +32,7 @@ fn plan(n: usize) -> Across {
 /// The exact pressure solve: a cosine transform across the channel diagonalises the
 /// free-slip Poisson problem, leaving one tridiagonal solve per mode along it.
 #[derive(Clone)]
-pub struct PoissonSolver {
+pub(crate) struct PoissonSolver {
     n: usize,
     across: Across,
     /// `1 / h²`: the tridiagonal systems' off-diagonal.
@@ -100,7 +100,7 @@ impl Factors {
 
 impl PoissonSolver {
     /// A solver for an `n × n` grid of cells of size `h`.
-    pub fn new(n: usize, h: f32) -> Self {
+    pub(crate) fn new(n: usize, h: f32) -> Self {
         let across = plan(n);
         let scratch = vec![0.0; across.get_scratch_len()];
         Self {
@@ -114,13 +114,13 @@ impl PoissonSolver {
     }
 
     /// Heap bytes of this solver's own (unshared) buffers.
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.modes.len() * 8 + self.scratch.len() * 4
     }
 
     /// Solves `∇²φ = rhs` in place (row-major, `n × n`, rows along x), with ∂φ/∂n = 0 at
     /// the side walls and the top (inflow) face and φ = 0 on the bottom (wake) face.
-    pub fn solve(&mut self, field: &mut [f32]) {
+    pub(crate) fn solve(&mut self, field: &mut [f32]) {
         let n = self.n;
         debug_assert_eq!(field.len(), n * n);
         for row in field.chunks_exact_mut(n) {

@@ -8,69 +8,69 @@ use glam::Vec2;
 
 /// A Hookean spring between two points.
 #[derive(Clone, Copy, Debug)]
-pub struct Spring {
+pub(crate) struct Spring {
     /// One end's point index.
-    pub a: usize,
+    pub(crate) a: usize,
     /// The other end's.
-    pub b: usize,
+    pub(crate) b: usize,
     /// Rest length, m.
-    pub rest: f32,
+    pub(crate) rest: f32,
     /// N/m per metre of depth: modulus × cross-section / rest length.
-    pub stiffness: f32,
+    pub(crate) stiffness: f32,
     /// Strain beyond which the spring stiffens [`STIFFENING`]-fold, if any.
-    pub strain_limit: Option<f32>,
+    pub(crate) strain_limit: Option<f32>,
 }
 
 /// Tentacle strain at which the tissue stiffens (Megill: mesoglea is linear "except for
 /// extremely large stresses, where it becomes more stiff"). Without it the soft tentacle
 /// springs (1/100 of the bell's cross-section) let the jet stretch tentacles to several
 /// times their length within a few strokes.
-pub const TENTACLE_STRAIN_LIMIT: f32 = 0.1;
+pub(crate) const TENTACLE_STRAIN_LIMIT: f32 = 0.1;
 /// Hinge bending beyond which the mesoglea stiffens [`HINGE_STIFFENING`]-fold, rad. With
 /// plate-bending hinges alone, the wake of the 10-diameter box turned the bell inside out
 /// after about a dozen strokes; a gentle knee keeps the stroke soft and the bell upright.
-pub const BEND_LIMIT: f32 = 0.25;
+pub(crate) const BEND_LIMIT: f32 = 0.25;
 /// Hinge stiffening beyond [`BEND_LIMIT`]; a sharper knee (10×, 100×) made strokes jitter.
-pub const HINGE_STIFFENING: f32 = 3.0;
+pub(crate) const HINGE_STIFFENING: f32 = 3.0;
 /// How much stiffer a spring gets beyond its strain limit.
-pub const STIFFENING: f32 = 100.0;
+pub(crate) const STIFFENING: f32 = 100.0;
 
 /// An angular spring holding the angle at `b` between `a` and `c`.
 #[derive(Clone, Copy, Debug)]
-pub struct Hinge {
+pub(crate) struct Hinge {
     /// One neighbour's point index.
-    pub a: usize,
+    pub(crate) a: usize,
     /// The point the angle is at.
-    pub b: usize,
+    pub(crate) b: usize,
     /// The other neighbour's.
-    pub c: usize,
+    pub(crate) c: usize,
     /// Signed rest angle from `a - b` to `c - b`, rad.
-    pub rest: f32,
+    pub(crate) rest: f32,
     /// N·m/rad per metre of depth.
-    pub stiffness: f32,
+    pub(crate) stiffness: f32,
     /// Bending (rad from rest) beyond which the hinge stiffens [`HINGE_STIFFENING`]-fold.
-    pub bend_limit: f32,
+    pub(crate) bend_limit: f32,
 }
 
 /// A muscle spring across the bell; its rest length follows the contraction function.
 #[derive(Clone, Copy, Debug)]
-pub struct Muscle {
+pub(crate) struct Muscle {
     /// The point on one side of the bell.
-    pub a: usize,
+    pub(crate) a: usize,
     /// Its opposite point.
-    pub b: usize,
+    pub(crate) b: usize,
     /// Rest length when relaxed, m.
-    pub relaxed: f32,
+    pub(crate) relaxed: f32,
     /// Current rest length, m (set by the muscle drive each step).
-    pub rest: f32,
+    pub(crate) rest: f32,
     /// N/m per metre of depth.
-    pub stiffness: f32,
+    pub(crate) stiffness: f32,
     /// 0 nearest the apex, 1 at the margin: where the staggered expansion is slowest.
-    pub level: f32,
+    pub(crate) level: f32,
 }
 
 /// Hinge length the default `angular_stiffness` refers to, m (grid 100: half a 4 mm cell).
-pub const REFERENCE_HINGE_LENGTH: f32 = 0.002;
+pub(crate) const REFERENCE_HINGE_LENGTH: f32 = 0.002;
 
 pub(super) fn spring(points: &[Vec2], a: usize, b: usize, modulus_times_area: f32) -> Spring {
     let rest = (points[b] - points[a]).length();
@@ -106,26 +106,27 @@ pub(super) fn wrap_angle(a: f32) -> f32 {
 /// One scalar constraint `C(x)` with energy `½·k·C²`, over up to three points.
 #[derive(Clone, Copy)]
 pub(super) struct Constraint {
-    pub idx: [usize; 3],
-    pub grad: [Vec2; 3],
-    pub count: usize,
-    pub stiffness: f32,
+    pub(crate) idx: [usize; 3],
+    pub(crate) grad: [Vec2; 3],
+    pub(crate) count: usize,
+    pub(crate) stiffness: f32,
     /// `C` as the force sees it (past a knee, mapped onto the stiffer slope).
-    pub value: f32,
+    pub(crate) value: f32,
     /// `C` itself: the strain or bend from rest.
-    pub raw: f32,
+    pub(crate) raw: f32,
     /// How much `raw` changed over the step, for the mesoglea's viscosity.
-    pub change: f32,
+    pub(crate) change: f32,
 }
 
 impl Constraint {
-    pub fn add_force(&self, out: &mut [Vec2]) {
+    #[cfg(test)]
+    pub(crate) fn add_force(&self, out: &mut [Vec2]) {
         self.add_damped_force(out, 0.0);
     }
 
     /// Adds the Kelvin–Voigt force `−k·(C + τ·dC/dt)·∇C`, with `damping = τ/dt` and the
     /// rate taken over the step.
-    pub fn add_damped_force(&self, out: &mut [Vec2], damping: f32) {
+    pub(crate) fn add_damped_force(&self, out: &mut [Vec2], damping: f32) {
         let magnitude = self.stiffness * (self.value + damping * self.change);
         for k in 0..self.count {
             out[self.idx[k]] -= magnitude * self.grad[k];

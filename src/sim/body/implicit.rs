@@ -16,14 +16,14 @@ pub(super) struct Solver {
     sequence: Vec<usize>,
     matrix: BandedSpd,
     /// The right-hand side, then the solution.
-    pub rhs: Vec<f64>,
+    pub(crate) rhs: Vec<f64>,
     forces: Vec<Vec2>,
 }
 
 impl Solver {
     /// A solver for the points of `sequence`, numbered in that order (each coupling should
     /// join points a few places apart in it, which keeps the band narrow).
-    pub fn new(body_len: usize, sequence: Vec<usize>) -> Self {
+    pub(crate) fn new(body_len: usize, sequence: Vec<usize>) -> Self {
         let mut order = vec![None; body_len];
         for (k, &i) in sequence.iter().enumerate() {
             order[i] = Some(k);
@@ -39,7 +39,7 @@ impl Solver {
 
     /// The bell numbered from the apex outwards, alternating sides: every spring, hinge
     /// and muscle then couples points a few places apart.
-    pub fn bell_order(bell: &Range<usize>) -> Vec<usize> {
+    pub(crate) fn bell_order(bell: &Range<usize>) -> Vec<usize> {
         let m = bell.len() / 2;
         let mut out = vec![bell.start + m];
         for d in 1..=m {
@@ -50,7 +50,7 @@ impl Solver {
     }
 
     /// The tentacles numbered from the margins outwards, alternating sides.
-    pub fn tentacle_order(tentacles: &[Range<usize>; 2]) -> Vec<usize> {
+    pub(crate) fn tentacle_order(tentacles: &[Range<usize>; 2]) -> Vec<usize> {
         let longest = tentacles[0].len().max(tentacles[1].len());
         let mut out = Vec::new();
         for k in 0..longest {
@@ -64,7 +64,7 @@ impl Solver {
     }
 
     /// Sizes the band for the couplings the body has.
-    pub fn prepare(&mut self, cons: &[Constraint]) {
+    pub(crate) fn prepare(&mut self, cons: &[Constraint]) {
         let band = cons
             .iter()
             .map(|c| {
@@ -82,12 +82,12 @@ impl Solver {
     /// Solves for the forces at the predicted positions, `damping = τ/dt` adding the
     /// mesoglea's viscosity (backward Euler: the rate over the step, the stiffness
     /// `k·(1 + τ/dt)`).
-    pub fn solve(&mut self, cons: &[Constraint], diag: f32, damping: f32, out: &mut [Vec2]) {
+    pub(crate) fn solve(&mut self, cons: &[Constraint], diag: f32, damping: f32, out: &mut [Vec2]) {
         self.solve_each(cons, |_| diag, damping, out);
     }
 
     /// [`Self::solve`] with a diagonal of its own for each point (`diag(point)`).
-    pub fn solve_each(
+    pub(crate) fn solve_each(
         &mut self,
         cons: &[Constraint],
         diag: impl Fn(usize) -> f32,

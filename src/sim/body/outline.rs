@@ -5,16 +5,16 @@
 use glam::Vec2;
 
 /// Below this fraction of its rest area an outline counts as crumpled.
-pub const CRUMPLED_AREA: f32 = 0.2;
+pub(crate) const CRUMPLED_AREA: f32 = 0.2;
 
 /// Shoelace area of a closed polygon (unsigned).
-pub fn polygon_area(points: &[Vec2]) -> f32 {
+pub(crate) fn polygon_area(points: &[Vec2]) -> f32 {
     signed_area(points).abs()
 }
 
 /// Signed shoelace area of a closed polygon: positive when the points run clockwise, as
 /// the bell's do at rest (left margin, over the apex, to the right margin).
-pub fn signed_area(points: &[Vec2]) -> f32 {
+pub(crate) fn signed_area(points: &[Vec2]) -> f32 {
     let n = points.len();
     let twice: f32 = (0..n)
         .map(|i| points[i].perp_dot(points[(i + 1) % n]))
@@ -24,7 +24,7 @@ pub fn signed_area(points: &[Vec2]) -> f32 {
 
 /// Whether the closed polygon through `points` crosses itself (edges that touch only at a
 /// shared corner do not count).
-pub fn crosses_itself(points: &[Vec2]) -> bool {
+pub(crate) fn crosses_itself(points: &[Vec2]) -> bool {
     let n = points.len();
     if n < 4 {
         return false;
@@ -85,7 +85,7 @@ pub struct Outline {
 
 impl Outline {
     /// The outline of a bell whose rest area is `rest_area` (m²).
-    pub fn of(bell: &[Vec2], rest_area: f32) -> Self {
+    pub(crate) fn of(bell: &[Vec2], rest_area: f32) -> Self {
         Self {
             area_ratio: signed_area(bell) / rest_area,
             crossed: crosses_itself(bell),

@@ -7,14 +7,14 @@ use glam::Vec2;
 ///
 /// Thickest at the apex (the paper's ϑ), thinning quadratically towards the margin, as in
 /// the paper's Fig. 2 cross-sections.
-pub fn mesoglea_thickness(species: &Species, s: f32) -> f32 {
+pub(crate) fn mesoglea_thickness(species: &Species, s: f32) -> f32 {
     let s = s.clamp(0.0, 1.0);
     species.thickness * (1.0 - (1.0 - species.margin_thickness_ratio) * s * s)
 }
 
 /// The rest subumbrella: a half-ellipse of the species' diameter and height, aperture
 /// centre at the origin, apex at +y, points at equal arc length about `h/2` apart.
-pub fn rest_outline(species: &Species, h: f32) -> Vec<Vec2> {
+pub(crate) fn rest_outline(species: &Species, h: f32) -> Vec<Vec2> {
     let a = 0.5 * species.diameter;
     let b = species.height;
     // Dense polyline from the left margin (θ = π) over the apex to the right margin.

@@ -26,7 +26,7 @@ pub(super) struct TentacleDrag {
 
 impl TentacleDrag {
     /// A tentacle of the species, hanging straight, in segments of `segment` metres.
-    pub fn new(species: &Species, segment: f32) -> Self {
+    pub(crate) fn new(species: &Species, segment: f32) -> Self {
         let a = species.tentacle_radius.max(1e-6);
         let length = species.tentacle_length.max(2.0 * a);
         let per_depth = species.tentacle_count as f32 / (std::f32::consts::PI * species.diameter);
@@ -41,7 +41,7 @@ impl TentacleDrag {
 
     /// Force per unit of slip velocity at relative speed `speed` (m/s), N·s/m² per metre
     /// of depth.
-    pub fn at(&self, speed: f32) -> f32 {
+    pub(crate) fn at(&self, speed: f32) -> f32 {
         let d = 2.0 * self.radius;
         let re = (speed * d / self.kinematic_viscosity).max(1e-6);
         let drag_coefficient = 1.0 + 10.0 * re.powf(-2.0 / 3.0);
@@ -65,7 +65,7 @@ impl Body {
     /// Puts back outside the bell any tentacle point the refilling flow carried into it:
     /// onto the nearest point of the outline (the subumbrella closed by the aperture
     /// chord). Tentacles hang from the margin and cannot pass through the mesoglea.
-    pub fn keep_tentacles_outside(&mut self) {
+    pub(crate) fn keep_tentacles_outside(&mut self) {
         let n = self.bell.len();
         for range in self.tentacles.clone() {
             for i in range {

@@ -11,9 +11,9 @@
 #[derive(Clone, Debug)]
 pub(super) struct ComovingFrame {
     /// World position of the box along the channel (y), m.
-    pub position: f64,
+    pub(super) position: f64,
     /// Velocity of the box along the channel, m/s.
-    pub velocity: f32,
+    pub(super) velocity: f32,
     /// Low-passed world velocity of the bell, m/s.
     filtered: f32,
     /// Filter time constant, s.
@@ -30,7 +30,7 @@ const RETURN_PERIODS: f32 = 2.0;
 
 impl ComovingFrame {
     /// A frame at rest, following a bell with stroke period `period` seconds.
-    pub fn new(period: f32) -> Self {
+    pub(super) fn new(period: f32) -> Self {
         Self {
             position: 0.0,
             velocity: 0.0,
@@ -43,7 +43,7 @@ impl ComovingFrame {
     /// Moves the box through a step of `dt` seconds in which the bell's centroid moved by
     /// `moved` m along the channel within the box, ending `from_home` m ahead of its home.
     /// Returns the change of the frame's velocity for the next step.
-    pub fn follow(&mut self, dt: f32, moved: f32, from_home: f32) -> f32 {
+    pub(super) fn follow(&mut self, dt: f32, moved: f32, from_home: f32) -> f32 {
         self.position += (self.velocity * dt) as f64;
         let bell = self.velocity + moved / dt;
         self.filtered += (dt / self.smoothing).min(1.0) * (bell - self.filtered);

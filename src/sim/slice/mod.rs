@@ -24,7 +24,7 @@ const SPONGE_RATE: f32 = 4.0;
 const BOW_DIAMETERS: f32 = 1.5;
 
 /// The coupled 2D slice: fluid, bell, tentacles and muscles, stepped together in fixed
-/// steps of its own (DESIGN.md §4).
+/// steps of its own (the headless API: `docs/usage.md`, "Use it headless").
 #[derive(Clone)]
 pub struct SliceSim {
     species: Species,
@@ -212,7 +212,7 @@ impl SliceSim {
         }
     }
 
-    // --- The headless API of DESIGN.md section 4 ---
+    // --- The headless API (`docs/usage.md`); these keep their meaning ---
 
     /// Simulated seconds of the state: the end of the last fixed step.
     pub fn time(&self) -> f32 {
@@ -263,12 +263,14 @@ impl SliceSim {
         }
     }
 
-    /// The fluid grid (for debug overlays and tests).
+    /// The fluid grid, for debug overlays and measurements ([`inspect`](crate::sim::inspect):
+    /// not semver-stable).
     pub fn fluid(&self) -> &Fluid {
         &self.fluid
     }
 
-    /// The spring-mass body.
+    /// The spring-mass body, for debug overlays and measurements
+    /// ([`inspect`](crate::sim::inspect): not semver-stable).
     pub fn body(&self) -> &Body {
         &self.body
     }

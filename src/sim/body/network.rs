@@ -1,0 +1,159 @@
+//! The spring-mass network of the paper's Fig. 4, part by part: the subumbrellar chain of
+//! Hookean springs, the angular springs that give the mesoglea its shape, the
+//! circumferential muscle's springs across the bell, and the tentacles hanging from the
+//! aperture's margins.
+
+use super::elements::{
+    Hinge, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge, spring,
+};
+use super::rest_shape::mesoglea_thickness;
+use super::tentacle::tentacle_bending;
+use crate::species::Species;
+use glam::Vec2;
+use std::ops::Range;
+
+/// Distance of subumbrellar point `i` from the apex `m` along the chain, as a fraction
+/// of the way to the margin (0 at the apex, 1 at either margin).
+fn arc_fraction(i: usize, m: usize) -> f32 {
+    (i as f32 - m as f32).abs() / m as f32
+}
+
+/// The subumbrellar chain: a Hookean spring between neighbouring points, its
+/// cross-section the local mesoglea thickness times unit depth.
+pub(super) fn subumbrellar_springs(species: &Species, subumbrella: &[Vec2]) -> Vec<Spring> {
+    let m = subumbrella.len() / 2;
+    (0..subumbrella.len() - 1)
+        .map(|i| {
+            let s = arc_fraction(i, m) * 0.5 + arc_fraction(i + 1, m) * 0.5;
+            let t = mesoglea_thickness(species, s);
+            spring(subumbrella, i, i + 1, species.elastic_modulus * t)
+        })
+        .collect()
+}
+
+/// Angular springs along the subumbrella: the mesoglea's bending stiffness. Plate bending
+/// stiffness scales with t³; `angular_stiffness` is the value at the apex thickness for a
+/// 2 mm hinge, rescaled to this `spacing` so the bell's rigidity does not depend on the
+/// grid.
+pub(super) fn mesoglea_hinges(species: &Species, subumbrella: &[Vec2], spacing: f32) -> Vec<Hinge> {
+    let m = subumbrella.len() / 2;
+    let hinge_scale = REFERENCE_HINGE_LENGTH / spacing;
+    (1..subumbrella.len() - 1)
+        .map(|i| {
+            let t = mesoglea_thickness(species, arc_fraction(i, m)) / species.thickness;
+            hinge(
+                subumbrella,
+                i - 1,
+                i,
+                i + 1,
+                species.angular_stiffness * t.powi(3) * hinge_scale,
+            )
+        })
+        .collect()
+}
+
+/// The circumferential muscle: springs between opposite subumbrellar points, from the
+/// aperture's margins to 3/4 of the way up to the apex.
+///
+/// Each is the muscle in series with the hoop of mesoglea it lines (the slice has no
+/// circumference of its own): the muscle sets the rest length (the contraction function),
+/// and the far softer mesoglea sets the stiffness, so the bell's resonance with its water
+/// rises with `elastic_modulus` (DeMont & Gosline 1988). Each spring stands for a band of
+/// the ring as tall as the point `spacing`, so the bell's total stiffness does not grow
+/// with the number of points (grid).
+pub(super) fn circumferential_muscles(
+    species: &Species,
+    subumbrella: &[Vec2],
+    spacing: f32,
+) -> Vec<Muscle> {
+    let bell_len = subumbrella.len();
+    let m = bell_len / 2;
+    let band = species.thickness * (spacing / REFERENCE_HINGE_LENGTH);
+    let fibre = species.muscle_modulus * species.muscle_cross_section * band;
+    let hoop = species.elastic_modulus * species.hoop_cross_section * band;
+    let in_series = fibre * hoop / (fibre + hoop);
+    let mut muscles = Vec::new();
+    for i in 0..m {
+        let level = 1.0 - i as f32 / m as f32;
+        if level < 0.25 {
+            break;
+        }
+        let j = bell_len - 1 - i;
+        let relaxed = (subumbrella[j] - subumbrella[i]).length();
+        muscles.push(Muscle {
+            a: i,
+            b: j,
+            relaxed,
+            rest: relaxed,
+            stiffness: in_series / relaxed,
+            level,
+        });
+    }
+    muscles
+}
+
+/// The tentacles hanging from the aperture's two margins.
+pub(super) struct Tentacles {
+    /// Indices of the left and right tentacle points, margin outwards (margin excluded).
+    pub(crate) ranges: [Range<usize>; 2],
+    /// Length of one tentacle segment, m (0 without tentacles).
+    pub(crate) segment: f32,
+}
+
+/// Hangs a tentacle straight down from each margin of the aperture (the first and last of
+/// the `bell_len` subumbrellar points): a chain of springs of the mesoglea's modulus and
+/// a fraction of the margin's cross-section, and hinges along it. Appends the points,
+/// springs and hinges.
+pub(super) fn hang_tentacles(
+    species: &Species,
+    bell_len: usize,
+    spacing: f32,
+    points: &mut Vec<Vec2>,
+    springs: &mut Vec<Spring>,
+    hinges: &mut Vec<Hinge>,
+) -> Tentacles {
+    let margin_t = mesoglea_thickness(species, 1.0);
+    let tentacle_area = margin_t * species.tentacle_cross_section;
+    let segments = ((species.tentacle_length / spacing).round() as usize)
+        .max(if species.tentacle_length > 0.0 { 2 } else { 0 });
+    let seg_len = if segments > 0 {
+        species.tentacle_length / segments as f32
+    } else {
+        0.0
+    };
+    let hinge_scale = REFERENCE_HINGE_LENGTH / spacing;
+    let mut tentacles = [0..0, 0..0];
+    let bell_neighbour = [1, bell_len - 2];
+    for (side, margin) in [(0, 0), (1, bell_len - 1)] {
+        let start = points.len();
+        let mut prev = margin;
+        for k in 1..=segments {
+            points.push(points[margin] - Vec2::Y * seg_len * k as f32);
+            let idx = points.len() - 1;
+            let mut s = spring(points, prev, idx, species.elastic_modulus * tentacle_area);
+            s.strain_limit = Some(TENTACLE_STRAIN_LIMIT);
+            springs.push(s);
+            prev = idx;
+        }
+        tentacles[side] = start..points.len();
+        // Bending: the root, where the tentacle grows from the margin, is as stiff as
+        // the margin itself; beyond it a tentacle bends as a thin cylinder of mesoglea
+        // (see `tentacle_bending`) and trails in the flow. A root stiff over a third of
+        // the length swung the tentacles as rods across the bell's axis.
+        let margin_hinge =
+            species.angular_stiffness * species.margin_thickness_ratio.powi(3) * hinge_scale;
+        let tip_hinge = tentacle_bending(species, seg_len.max(1e-6));
+        let chain: Vec<usize> = std::iter::once(bell_neighbour[side])
+            .chain(std::iter::once(margin))
+            .chain(start..points.len())
+            .collect();
+        for (k, w) in chain.windows(3).enumerate() {
+            let stiffness = if k == 0 { margin_hinge } else { tip_hinge };
+            hinges.push(hinge(points, w[0], w[1], w[2], stiffness));
+        }
+    }
+    Tentacles {
+        ranges: tentacles,
+        segment: seg_len,
+    }
+}

@@ -1,0 +1,129 @@
+//! The body on its own: rest, balance of forces, implicit forces, tentacles, muscles.
+
+use super::*;
+
+fn body() -> Body {
+    Body::new(&Species::aurelia(), Vec2::new(0.2, 0.2), 0.004)
+}
+
+#[test]
+fn rest_shape_feels_no_force() {
+    let b = body();
+    let mut f = vec![Vec2::ZERO; b.points.len()];
+    b.forces(&mut f);
+    let max = f.iter().fold(0.0f32, |m, v| m.max(v.length()));
+    assert!(max < 1e-4, "{max}");
+}
+
+fn deformed(b: &mut Body) {
+    for (i, p) in b.points.iter_mut().enumerate() {
+        *p += Vec2::new((i as f32 * 1.3).sin(), (i as f32 * 0.7).cos()) * 0.001;
+    }
+    for m in &mut b.muscles {
+        m.rest = 0.6 * m.relaxed;
+    }
+}
+
+#[test]
+fn internal_forces_sum_to_zero() {
+    let mut b = body();
+    deformed(&mut b);
+    let mut f = vec![Vec2::ZERO; b.points.len()];
+    b.forces(&mut f);
+    let scale: f32 = f.iter().map(|v| v.length()).sum();
+    let net: Vec2 = f.iter().sum();
+    let torque: f32 = b.points.iter().zip(&f).map(|(p, f)| p.perp_dot(*f)).sum();
+    assert!(scale > 1.0, "the deformation loads the springs");
+    assert!(net.length() < 1e-5 * scale, "net {net}, scale {scale}");
+    assert!(torque.abs() < 1e-5 * scale, "torque {torque}");
+}
+
+#[test]
+fn implicit_forces_match_explicit_ones_for_tiny_steps_and_soften_for_large() {
+    let mut species = Species::aurelia();
+    species.tentacle_length = 0.0;
+    let mut b = Body::new(&species, Vec2::new(0.2, 0.2), 0.004);
+    deformed(&mut b);
+    let x = b.points.clone();
+    let n = x.len();
+    let mut explicit = vec![Vec2::ZERO; n];
+    b.forces(&mut explicit);
+    let (mut small_dt, mut large_dt, mut slip) = (
+        vec![Vec2::ZERO; n],
+        vec![Vec2::ZERO; n],
+        vec![Vec2::ZERO; n],
+    );
+    let mass = 1025.0 * 0.004 * 0.004;
+    b.implicit_forces(&x, 1e-6, mass / 1e-12, &mut small_dt, &mut slip);
+    b.implicit_forces(&x, 0.05, mass / 0.05f32.powi(2), &mut large_dt, &mut slip);
+    let norm = |f: &[Vec2]| f.iter().map(|v| v.length_squared()).sum::<f32>().sqrt();
+    // Tiny step: implicit equals explicit. Large step: the stiff modes are damped.
+    let diff: f32 = explicit
+        .iter()
+        .zip(&small_dt)
+        .map(|(a, b)| (*a - *b).length_squared())
+        .sum::<f32>()
+        .sqrt();
+    assert!(diff < 1e-3 * norm(&explicit), "{diff}");
+    assert!(norm(&large_dt) < norm(&explicit));
+    let net: Vec2 = large_dt.iter().sum();
+    assert!(net.length() < 1e-4 * norm(&large_dt), "net {net}");
+}
+
+#[test]
+fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
+    let mut b = body();
+    // Swing the tentacles sideways: their springs and hinges pull.
+    let [left, right] = b.tentacles.clone();
+    for (k, i) in left.enumerate() {
+        b.points[i].x -= 0.0003 * k as f32;
+    }
+    for (k, i) in right.enumerate() {
+        b.points[i].x += 0.0005 * k as f32;
+    }
+    let x = b.points.clone();
+    let n = x.len();
+    let (mut forces, mut slip) = (vec![Vec2::ZERO; n], vec![Vec2::ZERO; n]);
+    let mass = 1025.0 * 0.004 * 0.004;
+    b.implicit_forces(&x, 0.03, mass / 0.03f32.powi(2), &mut forces, &mut slip);
+    let scale: f32 = forces.iter().map(|f| f.length()).sum();
+    let net: Vec2 = forces.iter().sum();
+    assert!(scale > 0.0);
+    assert!(net.length() < 1e-4 * scale, "net {net} of {scale}");
+    // The tentacle points slip through the water; the bell's do not.
+    assert!(
+        b.tentacles
+            .iter()
+            .flat_map(|r| r.clone())
+            .any(|i| slip[i] != Vec2::ZERO)
+    );
+    assert!(slip[b.bell.clone()].iter().all(|s| *s == Vec2::ZERO));
+    // The margins feel the tentacles' pull.
+    let margins = [b.bell.start, b.bell.end - 1];
+    assert!(
+        forces[margins[0]].x < 0.0 && forces[margins[1]].x > 0.0,
+        "{:?}",
+        [forces[margins[0]], forces[margins[1]]]
+    );
+}
+
+#[test]
+fn relaxed_muscles_hold_the_rest_shape() {
+    let mut b = body();
+    let rest = b.points.clone();
+    for m in &mut b.muscles {
+        m.rest = 0.56 * m.relaxed;
+    }
+    let mut f = vec![Vec2::ZERO; b.points.len()];
+    b.forces(&mut f);
+    // Contracted rest lengths pull opposite margins together...
+    let (l, r) = (b.muscles[0].a, b.muscles[0].b);
+    assert!(f[l].x > 0.0 && f[r].x < 0.0);
+    // ...and relaxed ones leave the rest shape alone.
+    for m in &mut b.muscles {
+        m.rest = m.relaxed;
+    }
+    b.forces(&mut f);
+    assert!(f.iter().all(|v| v.length() < 1e-4));
+    assert_eq!(b.points, rest);
+}

@@ -1,0 +1,53 @@
+//! Where the immersed boundary meets the grid: points read the velocity of the faces
+//! around them and spread their forces back onto the same faces with the same weights,
+//! which makes interpolation and spreading adjoint and spreading exactly force-conserving.
+
+use super::{Component, Fluid};
+use crate::sim::kernel::{self, Stencil};
+use glam::Vec2;
+
+impl Fluid {
+    /// Adds the accumulated force density, then clears it.
+    pub(crate) fn apply_force(&mut self, dt: f32) {
+        let scale = dt / self.rho;
+        for (u, f) in self.u.iter_mut().zip(self.force_u.iter_mut()) {
+            *u += scale * *f;
+            *f = 0.0;
+        }
+        for (v, f) in self.v.iter_mut().zip(self.force_v.iter_mut()) {
+            *v += scale * *f;
+            *f = 0.0;
+        }
+        self.enforce_walls();
+    }
+
+    /// Velocity at a point, per component under the fluid's kernel.
+    pub fn velocity_at(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
+            self.sample_component(Component::U, p),
+            self.sample_component(Component::V, p),
+        )
+    }
+
+    /// Sample of one component under the fluid's kernel. Outside the box, the nearest
+    /// faces' values.
+    pub(crate) fn sample_component(&self, c: Component, p: Vec2) -> f32 {
+        let field = match c {
+            Component::U => &self.u,
+            Component::V => &self.v,
+        };
+        self.stencil(c, p).iter().map(|(i, w)| w * field[i]).sum()
+    }
+
+    /// The faces of component `c` around `p` and their weights under the fluid's
+    /// [`Kernel`] (summing to 1). Interpolation and force spreading both use this, which
+    /// makes them adjoint.
+    pub(crate) fn stencil(&self, c: Component, p: Vec2) -> Stencil {
+        let n = self.n;
+        let (gx, gy, nx, ny) = match c {
+            Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
+            Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
+        };
+        kernel::stencil(self.kernel, gx, gy, nx, ny, self.kernel_stretch)
+    }
+}

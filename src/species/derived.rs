@@ -1,0 +1,82 @@
+//! What follows from a species' fields: the fluid box and its cells, the water's
+//! kinematic viscosity, the mesoglea's damping, the period and the fixed step.
+
+use super::{Species, limits};
+
+impl Species {
+    /// Fluid cell size, m.
+    pub fn cell_size(&self) -> f32 {
+        self.domain_size() / self.grid_resolution as f32
+    }
+
+    /// Side of the square fluid domain, m.
+    pub fn domain_size(&self) -> f32 {
+        self.domain_diameters * self.diameter
+    }
+
+    /// Kinematic viscosity, m²/s.
+    pub fn kinematic_viscosity(&self) -> f32 {
+        self.viscosity / self.density
+    }
+
+    /// The mesoglea's Kelvin–Voigt time τ = η/E, s, from its resilience R at the stroke
+    /// frequency: a linear viscoelastic solid returns `R = exp(−π·tan δ)` of its energy,
+    /// and Kelvin–Voigt's `tan δ = ω·τ`.
+    pub fn mesoglea_damping_time(&self) -> f32 {
+        let loss_tangent = -self.mesoglea_resilience.clamp(1e-3, 1.0).ln() / std::f32::consts::PI;
+        loss_tangent / (std::f32::consts::TAU * self.contraction_frequency)
+    }
+
+    /// Contraction period, s.
+    pub fn period(&self) -> f32 {
+        1.0 / self.contraction_frequency
+    }
+
+    /// The same species in a box two thirds the size, of the same cells and step: a
+    /// cheaper live slice (about 0.6 of the cost) whose wake is cut shorter, so it swims a
+    /// few percent slower (see `examples/lod.rs`). The species itself where such a box
+    /// would be invalid.
+    pub fn compact_box(&self) -> Species {
+        let least = limits::LIMITS
+            .iter()
+            .find(|l| l.field == "domain_diameters")
+            .map_or(3.0, |l| l.min as f32);
+        let domain = (self.domain_diameters * 2.0 / 3.0).max(least);
+        let grid = (self.grid_resolution as f32 * domain / self.domain_diameters).round();
+        let compact = Species {
+            domain_diameters: grid * self.domain_diameters / self.grid_resolution as f32,
+            grid_resolution: grid as u32,
+            ..self.clone()
+        };
+        if compact.validate().is_ok() && compact.steps_per_cycle() == self.steps_per_cycle() {
+            compact
+        } else {
+            self.clone()
+        }
+    }
+
+    /// Fixed simulation steps per contraction cycle: enough to resolve the muscle drive
+    /// (at least 32) and to keep the water a stroke is expected to move under half a cell
+    /// per step (Courant 0.5 at four times the margin's mean inward speed: the jet leaves
+    /// the aperture faster than the margin closes; measured up to three times).
+    pub fn steps_per_cycle(&self) -> u32 {
+        const MIN_STEPS_PER_CYCLE: f32 = 32.0;
+        const COURANT: f32 = 0.5;
+        const JET_SPEED_FACTOR: f32 = 4.0;
+        let margin_speed = (1.0 - self.contraction_ratio) * 0.5 * self.diameter
+            / (self.contraction_duty * self.period());
+        let expected = JET_SPEED_FACTOR * margin_speed;
+        let courant = self.period() * expected / (COURANT * self.cell_size());
+        let steps = courant.ceil().max(MIN_STEPS_PER_CYCLE);
+        if steps.is_finite() {
+            steps.min(1e6) as u32
+        } else {
+            MIN_STEPS_PER_CYCLE as u32
+        }
+    }
+
+    /// The fixed simulation step, s: a whole fraction of the contraction period.
+    pub fn step_length(&self) -> f32 {
+        self.period() / self.steps_per_cycle() as f32
+    }
+}

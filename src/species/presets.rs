@@ -1,0 +1,190 @@
+//! The shipped species (as in `assets/species/`) and the paper's own variations and
+//! numerics, one call away.
+
+use super::{Advection, GonadShape, Kernel, Species};
+
+impl Species {
+    /// The moon jelly of the paper's Fig. 12, in SI units, simulated in a compact box that
+    /// follows the bell (see [`Species::with_paper_numerics`] for the paper's own box).
+    pub fn aurelia() -> Self {
+        Self {
+            name: "Aurelia".into(),
+            grid_resolution: 60,
+            viscosity: 1.304e-3,
+            density: 1025.0,
+            domain_diameters: 6.0,
+            advection: Advection::SemiLagrangian,
+            kernel: Kernel::Roma3,
+            boundary_width: 0.3,
+            diameter: 0.040,
+            height: 0.028,
+            thickness: 0.004,
+            margin_thickness_ratio: 0.3,
+            elastic_modulus: 1186.0,
+            // Plate bending of the apex wall, E·ϑ³/12 per 2 mm hinge (`docs/physics.md` §2).
+            angular_stiffness: 1186.0 * 0.004 * 0.004 * 0.004 / 12.0 / 0.002,
+            mesoglea_resilience: 1.0,
+            muscle_modulus: 400.0e3,
+            muscle_cross_section: 0.01,
+            // Calibrated: puts the bell's resonance with its water near the paper's 0.7 Hz
+            // (the distance swum in 20 s peaks between 0.7 and 1 Hz).
+            hoop_cross_section: 0.0101,
+            contraction_frequency: 0.7,
+            contraction_ratio: 0.56,
+            contraction_duty: 0.35,
+            expansion_stagger: 1.0,
+            // A moon jelly's fringe: hundreds of short, fine marginal tentacles. Their drag
+            // slows the bell by about a tenth (Miles & Battista 2019: tentacles reduce
+            // forward speed; measured here 9%, `tests/slice.rs`).
+            tentacle_count: 200,
+            tentacle_length: 0.015,
+            tentacle_cross_section: 0.01,
+            tentacle_radius: 0.00015,
+            tentacle_length_spread: 0.35,
+            // Four frilly oral arms from a short manubrium, four horseshoe gonads between
+            // them and sixteen radial canals: how a moon jelly is recognised.
+            manubrium_length: 0.003,
+            manubrium_radius: 0.0015,
+            oral_arm_count: 4,
+            oral_arm_length: 0.03,
+            oral_arm_width: 0.003,
+            oral_arm_frill: 0.5,
+            gonad_count: 4,
+            gonad_shape: GonadShape::Horseshoe,
+            gonad_size: 0.3,
+            gonad_color: [0.85, 0.45, 0.95, 0.9],
+            radial_canal_count: 16,
+            canal_width: 0.008,
+            // A smooth, taut bell, as in photographs of living medusae: gentle lobes, faint
+            // ripples as it contracts, a hint of irregularity. The paper's Fig. 12 values,
+            // several times larger, crumple the dome: `with_paper_variations`.
+            structural_scale: 0.06,
+            structural_frequency: 8.0,
+            structural_abs: false,
+            compression_scale: 0.08,
+            compression_frequency: 8.0,
+            unstructured_scale: 0.3,
+            noise_frequency_lat: 2.0,
+            noise_frequency_lon: 8.0,
+            noise_frequency_time: 0.01,
+            mesh_rings: 24,
+            mesh_segments: 48,
+            // Hair-thin tubes: three sides read as round at any size they are seen at,
+            // and keep two hundred of them under 11,000 vertices.
+            tentacle_sides: 3,
+            bell_color: [0.75, 0.85, 1.0, 0.35],
+            glow_color: [0.35, 0.55, 1.0],
+            glow: 0.6,
+        }
+    }
+
+    /// The crystal jelly (`assets/species/aequorea.species.ron`): a wide, flat disc with a hundred
+    /// long fine tentacles, slow strokes, green glow.
+    pub fn aequorea() -> Self {
+        Self {
+            name: "Aequorea".into(),
+            diameter: 0.06,
+            height: 0.02,
+            thickness: 0.005,
+            margin_thickness_ratio: 0.25,
+            contraction_frequency: 0.6,
+            contraction_ratio: 0.56,
+            tentacle_count: 100,
+            tentacle_length: 0.045,
+            tentacle_radius: 0.00025,
+            // Some of a crystal jelly's long tentacles hang full length, others curled up.
+            tentacle_length_spread: 0.6,
+            tentacle_sides: 4,
+            // A short, wide stomach fringed with lips, gonads along its many radial canals.
+            manubrium_length: 0.003,
+            manubrium_radius: 0.004,
+            oral_arm_count: 12,
+            oral_arm_length: 0.004,
+            oral_arm_width: 0.0015,
+            oral_arm_frill: 0.8,
+            gonad_count: 60,
+            gonad_shape: GonadShape::Radial,
+            gonad_size: 0.45,
+            gonad_color: [0.85, 1.0, 0.9, 0.45],
+            radial_canal_count: 60,
+            canal_width: 0.006,
+            structural_scale: 0.05,
+            structural_frequency: 16.0,
+            structural_abs: true,
+            compression_frequency: 12.0,
+            unstructured_scale: 0.2,
+            bell_color: [0.8, 0.95, 0.9, 0.25],
+            glow_color: [0.3, 1.0, 0.45],
+            glow: 0.5,
+            ..Self::aurelia()
+        }
+    }
+
+    /// A small hydromedusa (`assets/species/sarsia.species.ron`): a tall bell with four long
+    /// tentacles, quick strokes.
+    pub fn sarsia() -> Self {
+        Self {
+            name: "Sarsia".into(),
+            diameter: 0.016,
+            height: 0.022,
+            thickness: 0.0025,
+            margin_thickness_ratio: 0.4,
+            contraction_frequency: 1.4,
+            contraction_ratio: 0.5,
+            contraction_duty: 0.3,
+            tentacle_count: 4,
+            tentacle_length: 0.025,
+            tentacle_radius: 0.0003,
+            tentacle_length_spread: 0.15,
+            tentacle_sides: 6,
+            // A long tubular manubrium hanging out of the bell, four radial canals.
+            manubrium_length: 0.02,
+            manubrium_radius: 0.0008,
+            oral_arm_count: 0,
+            oral_arm_length: 0.0,
+            gonad_count: 0,
+            radial_canal_count: 4,
+            canal_width: 0.025,
+            structural_scale: 0.04,
+            structural_frequency: 4.0,
+            unstructured_scale: 0.15,
+            bell_color: [0.95, 0.8, 0.85, 0.3],
+            glow_color: [1.0, 0.35, 0.5],
+            glow: 0.5,
+            ..Self::aurelia()
+        }
+    }
+
+    /// Every shipped species, as in `assets/species/`.
+    pub fn presets() -> [Species; 3] {
+        [Self::aurelia(), Self::aequorea(), Self::sarsia()]
+    }
+
+    /// The paper's surface variation (its Fig. 9 and 12): structural lobes 0.375, compression
+    /// ripples 0.15 and Perlin noise 2.25 of the thickness, eight lobes and ripples. Only the
+    /// shape changes, not the slice. The shipped species are smoother.
+    pub fn with_paper_variations(mut self) -> Self {
+        self.structural_scale = 0.375;
+        self.structural_frequency = 8.0;
+        self.structural_abs = false;
+        self.compression_scale = 0.15;
+        self.compression_frequency = 8.0;
+        self.unstructured_scale = 2.25;
+        self.noise_frequency_lat = 2.0;
+        self.noise_frequency_lon = 8.0;
+        self.noise_frequency_time = 0.01;
+        self
+    }
+
+    /// The paper's numerics (its Fig. 12 and section 3.2): grid 100 over a box ten
+    /// diameters wide, bilinear spreading, semi-Lagrangian advection. The physics is the
+    /// same; [`Species::aurelia`] keeps the resolution (ten cells per diameter) in a
+    /// six-diameter box that follows the bell, with a kernel that does not see the grid.
+    pub fn with_paper_numerics(mut self) -> Self {
+        self.grid_resolution = 100;
+        self.domain_diameters = 10.0;
+        self.kernel = Kernel::Bilinear;
+        self.advection = Advection::SemiLagrangian;
+        self
+    }
+}

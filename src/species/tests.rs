@@ -1,0 +1,122 @@
+//! Presets, files and errors of a species.
+
+#[test]
+fn each_preset_is_its_shipped_file() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+    for preset in Species::presets() {
+        let file = dir.join(format!("{}.species.ron", preset.name.to_lowercase()));
+        let text = std::fs::read_to_string(&file).expect("shipped species file");
+        assert_eq!(
+            Species::from_ron(&text).unwrap(),
+            preset,
+            "{}",
+            file.display()
+        );
+        preset.validate().unwrap();
+    }
+}
+
+#[test]
+fn an_unknown_field_is_an_error_naming_it_and_where() {
+    let error = Species::from_ron("(\n    name: \"X\",\n    diamter: 0.05,\n)").unwrap_err();
+    let text = error.to_string();
+    assert!(text.contains("diamter"), "{text}");
+    assert!(text.contains("3:"), "names the line: {text}");
+}
+
+use super::*;
+
+#[test]
+fn aurelia_is_valid_and_matches_the_paper() {
+    let s = Species::aurelia();
+    s.validate().unwrap();
+    assert_eq!(s.contraction_frequency, 0.7);
+    assert_eq!(s.diameter, 0.040);
+    assert_eq!(s.height, 0.028);
+    assert_eq!(s.thickness, 0.004);
+    assert_eq!(s.elastic_modulus, 1186.0);
+    assert_eq!(s.contraction_ratio, 0.56);
+    assert_eq!(s.tentacle_cross_section, 0.01);
+    // The compact co-moving box keeps the paper's resolution, ten cells per diameter.
+    assert_eq!((s.grid_resolution, s.domain_diameters), (60, 6.0));
+    assert!((s.cell_size() - 0.004).abs() < 1e-7);
+    // The paper's own numerics stay one call away.
+    let paper = Species::aurelia().with_paper_numerics();
+    paper.validate().unwrap();
+    assert_eq!((paper.grid_resolution, paper.domain_diameters), (100, 10.0));
+    assert_eq!(paper.kernel, Kernel::Bilinear);
+    assert!((paper.cell_size() - 0.004).abs() < 1e-7);
+}
+
+#[test]
+fn ron_round_trip() {
+    let mut s = Species::aurelia();
+    s.name = "Test".into();
+    s.expansion_stagger = 0.25;
+    let text = s.to_ron().unwrap();
+    assert_eq!(Species::from_ron(&text).unwrap(), s);
+}
+
+#[test]
+fn missing_fields_take_defaults() {
+    let s = Species::from_ron("(name: \"Short\", contraction_frequency: 0.5)").unwrap();
+    assert_eq!(s.contraction_frequency, 0.5);
+    assert_eq!(s.diameter, Species::aurelia().diameter);
+}
+
+fn field_of(s: &Species) -> &'static str {
+    s.validate().unwrap_err().field().unwrap()
+}
+
+#[test]
+fn every_bad_value_names_its_field() {
+    type Mutation = Box<dyn Fn(&mut Species)>;
+    let cases: Vec<(&str, Mutation)> = vec![
+        ("grid_resolution", Box::new(|s| s.grid_resolution = 8)),
+        ("grid_resolution", Box::new(|s| s.grid_resolution = 1024)),
+        ("viscosity", Box::new(|s| s.viscosity = -1.0)),
+        ("density", Box::new(|s| s.density = 0.0)),
+        ("diameter", Box::new(|s| s.diameter = f32::NAN)),
+        ("diameter", Box::new(|s| s.diameter = -0.04)),
+        ("height", Box::new(|s| s.height = 0.0)),
+        ("height", Box::new(|s| s.height = f32::INFINITY)),
+        ("thickness", Box::new(|s| s.thickness = 0.0)),
+        ("thickness", Box::new(|s| s.thickness = 0.03)),
+        ("elastic_modulus", Box::new(|s| s.elastic_modulus = -5.0)),
+        (
+            "angular_stiffness",
+            Box::new(|s| s.angular_stiffness = -1.0),
+        ),
+        ("muscle_modulus", Box::new(|s| s.muscle_modulus = 0.0)),
+        (
+            "contraction_frequency",
+            Box::new(|s| s.contraction_frequency = 0.0),
+        ),
+        (
+            "contraction_frequency",
+            Box::new(|s| s.contraction_frequency = -1.0),
+        ),
+        ("contraction_ratio", Box::new(|s| s.contraction_ratio = 1.5)),
+        ("expansion_stagger", Box::new(|s| s.expansion_stagger = 2.0)),
+        ("tentacle_length", Box::new(|s| s.tentacle_length = -0.01)),
+        ("mesh_segments", Box::new(|s| s.mesh_segments = 2)),
+        ("bell_color[3]", Box::new(|s| s.bell_color[3] = 2.0)),
+    ];
+    for (field, mutate) in cases {
+        let mut s = Species::aurelia();
+        mutate(&mut s);
+        assert_eq!(field_of(&s), field, "{:?}", s.validate());
+        let msg = s.validate().unwrap_err().to_string();
+        assert!(msg.contains(field), "message `{msg}` names `{field}`");
+    }
+}
+
+#[test]
+fn bad_ron_is_an_error_not_a_panic() {
+    assert!(matches!(
+        Species::from_ron("(diameter: \"wide\")"),
+        Err(SpeciesError::Parse(_))
+    ));
+    let err = Species::from_ron("(diameter: -1.0)").unwrap_err();
+    assert_eq!(err.field(), Some("diameter"));
+}
