@@ -74,7 +74,7 @@ pub use render::{
     BellPatterns, GLOW_RADIANCE, JellyfishGeometry, JellyfishGlow, JellyfishMaterialPlugin,
     JellyfishMeshes, JellyfishRenderPlugin, JellyfishTentacles, PatternImages, ShapeBuffers,
     SpeciesMaterials, SurfaceExtension, SurfaceMaterial, SurfacePath, WorldSurfaces, bell_material,
-    glow_material, pattern_images, tentacle_material,
+    glow_material, tentacle_material,
 };
 pub use schedule::{JellyfishSchedulePlugin, JellyfishSystems};
 pub use settings::{DetailLevels, JellyfishSettings, SurfaceMode};
@@ -83,7 +83,7 @@ pub use slice::{
 };
 pub use species_asset::{SpeciesAssetPlugin, SpeciesLoader, SpeciesRejected};
 pub use swimming::{Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin};
-pub use tank::{Impulse, TankWater, TankWaterPlugin};
+pub use tank::{TankWater, TankWaterPlugin};
 pub use water::{AmbientWater, SampledWater, WaterField, WaterPlugin};
 
 use bevy::app::PluginGroupBuilder;

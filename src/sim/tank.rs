@@ -34,7 +34,7 @@ pub struct TankFluid {
 /// A push given to the water: within `radius` of `at`, towards `velocity`, smoothly less
 /// towards the edge.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Impulse {
+pub(crate) struct Impulse {
     /// Centre.
     pub at: Vec3,
     /// Reach.

@@ -15,7 +15,7 @@ pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use looks::{GLOW_RADIANCE, SpeciesMaterials, bell_material, glow_material, tentacle_material};
 pub use materials::JellyfishMaterialPlugin;
 pub use meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
-pub use patterns::{BellPatterns, PatternImages, pattern_images};
+pub use patterns::{BellPatterns, PatternImages};
 pub use templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
 
 use crate::plugin::jellyfish::Jellyfish;

@@ -95,7 +95,7 @@ pub(super) fn repaint_edited(
 }
 
 /// The colour and glow images of a species' pattern.
-pub fn pattern_images(species: &Species) -> [Image; 2] {
+pub(crate) fn pattern_images(species: &Species) -> [Image; 2] {
     let bell = Vec4::from_array(species.bell_color);
     let canal = bell.lerp(Vec4::ONE, 0.35).with_w((bell.w * 1.5).min(1.0));
     let gonad = Vec4::from_array(species.gonad_color);

@@ -13,8 +13,6 @@ use super::water::{AmbientWater, SampledWater};
 use crate::sim::tank::TankFluid;
 use bevy::prelude::*;
 
-pub use crate::sim::tank::Impulse;
-
 /// Steps a [`TankWater`] the app inserts and lets the jellyfish's jets stir it. Leave it
 /// out to keep a `TankWater` still or step it yourself.
 #[derive(Clone, Copy, Debug, Default)]
