@@ -56,8 +56,9 @@ pub fn run(
         warm_up_frames += 1;
         if let Some(error) = load_failure(&mut app) {
             return Err(format!(
-                "{error}; run it from the repository (`cargo run --release --features examples --example \
-                 aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder holding assets/"
+                "{error}; run it from the repository (`cargo run --release --features \
+                 examples --example aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder \
+                 holding assets/"
             ));
         }
         if start.elapsed() > READY_TIMEOUT {

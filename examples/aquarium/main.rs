@@ -1,29 +1,32 @@
 //! The aquarium: schools of three species of jellyfish in a lit tank.
 //!
-//! `cargo run --release --features examples --example aquarium -- [--count N] [--seed S] [--oit]`
+//! `cargo run --release --features examples --example aquarium -- --count 4`
+//! (`-- --help` lists every flag).
+//!
+//! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water.
+//! Panels (the `editor` feature, part of `examples`) edit each species live, change the
+//! school size and show the frame rate, jellyfish count and the plugin's simulation and
+//! meshing time; every few seconds the log prints the same numbers.
 //!
 //! `--oit` draws the translucent bells with Bevy's order-independent transparency
 //! (MSAA off): overlapping bells blend in the right order wherever they cross, at some
-//! cost in GPU memory and time; without it they are sorted by their origins.
+//! cost in GPU memory and time; without it they are sorted by their bounding-box centres.
 //!
-//! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water. With the `editor` feature (on by
-//! default) panels edit each species live, change the school size and show the frame
-//! rate, jellyfish count and the plugin's simulation and meshing time; every few seconds
-//! the log prints the same numbers.
+//! Offscreen, without a window (Mesa's software Vulkan will do), `--screenshot` renders
+//! `--frames` frames at 60 simulated frames per second, writes the last one and exits:
+//! `cargo run --release --features examples --example aquarium -- --screenshot out.png
+//! --frames 120 --size 1280x720`.
 //!
-//! Offscreen, without a window (Mesa's software Vulkan will do):
-//! `cargo run --release --features examples --example aquarium -- --screenshot out.png --frames 120
-//! [--size 1280x720]` renders that many frames at 60 simulated frames per second,
-//! writes the last one and exits.
-//!
-//! The headless benchmark, no renderer at all: `cargo run --release --features examples --example aquarium --
-//! --bench [--count N] [--frames 600] [--fps 60]` prints the wall and CPU time of a frame,
-//! the spread of frame times and the mesh data handed to the renderer.
+//! The headless benchmark, no renderer at all, prints the wall and CPU time of a frame,
+//! the spread of frame times and the mesh data handed to the renderer:
+//! `cargo run --release --features examples --example aquarium -- --bench --count 100
+//! --frames 600 --fps 60`.
 
 mod bench;
 mod camera;
 #[path = "../common/species.rs"]
 mod common;
+mod picture;
 mod scene;
 mod school;
 #[path = "../common/offscreen.rs"]
@@ -35,171 +38,141 @@ mod tank;
 mod ui;
 mod water;
 
-use bevy::diagnostic::DiagnosticsStore;
+use argh::FromArgs;
 use bevy::prelude::*;
+use bevy_jellyfish::JellyfishSettings;
 use bevy_jellyfish::plugin::{DetailLevels, SurfaceMode};
-use bevy_jellyfish::{JellyfishDiagnostics, JellyfishSettings};
 use scene::AquariumPlugin;
 use school::School;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// Schools of three species of jellyfish in a lit tank: in a window, rendered offscreen to
+/// a picture (--screenshot) or benchmarked headless (--bench).
+#[derive(FromArgs)]
 struct Args {
-    school: School,
-    screenshot: Option<PathBuf>,
-    bench: bool,
-    /// Frames to render or to benchmark (default 120 and 600).
-    frames: Option<usize>,
-    /// Frames per second of the benchmark.
-    fps: f64,
-    /// A scripted stir across the middle of the tank two seconds in (pictures).
-    stir: bool,
-    /// Offscreen: from this frame on every jellyfish is near (a picture of a transition).
-    promote_at: Option<u32>,
-    size: (u32, u32),
-    /// Where surfaces are built: templates on the GPU (the bench packs them without one)
-    /// or CPU meshes.
-    surfaces: SurfaceMode,
-    /// Levels of detail: how many jellyfish are near and mid.
-    detail: DetailLevels,
-    /// Order-independent transparency on the camera.
+    /// jellyfish of each species (default 100)
+    #[argh(option, default = "100")]
+    count: usize,
+    /// the seed that places the schools (default 1)
+    #[argh(option, default = "1")]
+    seed: u32,
+    /// order-independent transparency for the bells (MSAA off)
+    #[argh(switch)]
     oit: bool,
+    /// where surfaces are built: auto, templates (on the GPU; the bench packs them without
+    /// one) or cpu (default auto)
+    #[argh(option, default = "SurfaceMode::Auto", from_str_fn(surfaces))]
+    surfaces: SurfaceMode,
+    /// at most this many jellyfish near, simulated live (default 100)
+    #[argh(option, default = "DetailLevels::default().near")]
+    near: usize,
+    /// at most this many jellyfish mid, live in a compact box (default 24)
+    #[argh(option, default = "DetailLevels::default().mid")]
+    mid: usize,
+    /// offscreen: from this frame on every jellyfish is near (a picture of a transition)
+    #[argh(option)]
+    promote_at: Option<u32>,
+    /// render offscreen, without a window, and write the last frame to this PNG
+    #[argh(option)]
+    screenshot: Option<PathBuf>,
+    /// frames to render (default 120) or to benchmark (default 600)
+    #[argh(option)]
+    frames: Option<usize>,
+    /// offscreen picture size, WIDTHxHEIGHT (default 1280x720)
+    #[argh(option, default = "(1280, 720)", from_str_fn(size))]
+    size: (u32, u32),
+    /// offscreen: a scripted stir across the middle of the tank two seconds in
+    #[argh(switch)]
+    stir: bool,
+    /// the headless benchmark: no renderer, prints what a frame costs
+    #[argh(switch)]
+    bench: bool,
+    /// benchmark frames per second (default 60)
+    #[argh(option, default = "60.0", from_str_fn(fps))]
+    fps: f64,
 }
 
 impl Args {
-    fn parse() -> Result<Self, String> {
-        let mut args = Args {
-            school: School {
-                per_species: 100,
-                seed: 1,
-            },
-            screenshot: None,
-            bench: false,
-            frames: None,
-            fps: 60.0,
-            stir: false,
-            promote_at: None,
-            size: (1280, 720),
-            surfaces: SurfaceMode::Auto,
-            detail: DetailLevels::default(),
-            oit: false,
-        };
-        let mut it = std::env::args().skip(1);
-        while let Some(flag) = it.next() {
-            let mut value = || it.next().ok_or(format!("{flag} needs a value"));
-            let bad = |v: &str| format!("{flag}: cannot read {v:?}");
-            match flag.as_str() {
-                "--count" => {
-                    let v = value()?;
-                    args.school.per_species = v.parse().map_err(|_| bad(&v))?;
-                }
-                "--seed" => {
-                    let v = value()?;
-                    args.school.seed = v.parse().map_err(|_| bad(&v))?;
-                }
-                "--screenshot" => args.screenshot = Some(value()?.into()),
-                "--bench" => args.bench = true,
-                "--stir" => args.stir = true,
-                "--oit" => args.oit = true,
-                "--promote-at" => {
-                    let v = value()?;
-                    args.promote_at = Some(v.parse().map_err(|_| bad(&v))?);
-                }
-                "--near" => {
-                    let v = value()?;
-                    args.detail.near = v.parse().map_err(|_| bad(&v))?;
-                }
-                "--mid" => {
-                    let v = value()?;
-                    args.detail.mid = v.parse().map_err(|_| bad(&v))?;
-                }
-                "--surfaces" => {
-                    let v = value()?;
-                    args.surfaces = match v.as_str() {
-                        "auto" => SurfaceMode::Auto,
-                        "templates" => SurfaceMode::Templates,
-                        "cpu" => SurfaceMode::CpuMeshes,
-                        _ => return Err(bad(&v)),
-                    };
-                }
-                "--frames" => {
-                    let v = value()?;
-                    args.frames = Some(v.parse().map_err(|_| bad(&v))?);
-                }
-                "--fps" => {
-                    let v = value()?;
-                    args.fps = v.parse().map_err(|_| bad(&v))?;
-                    if !(args.fps.is_finite() && args.fps > 0.0) {
-                        return Err(bad(&v));
-                    }
-                }
-                "--size" => {
-                    let v = value()?;
-                    let (w, h) = v.split_once('x').ok_or_else(|| bad(&v))?;
-                    args.size = (
-                        w.parse().map_err(|_| bad(&v))?,
-                        h.parse().map_err(|_| bad(&v))?,
-                    );
-                }
-                _ => {
-                    return Err(format!(
-                        "unknown argument {flag:?}; usage: aquarium [--count N] [--seed S] \
-                         [--oit] [--surfaces auto|templates|cpu] [--near N] [--mid N] [--promote-at FRAME] \
-                         [--screenshot out.png [--frames 120] [--size 1280x720] [--stir]] \
-                         [--bench [--frames 600] [--fps 60]]"
-                    ));
-                }
-            }
+    fn school(&self) -> School {
+        School {
+            per_species: self.count,
+            seed: self.seed,
         }
-        Ok(args)
+    }
+
+    fn detail(&self) -> DetailLevels {
+        DetailLevels {
+            near: self.near,
+            mid: self.mid,
+            ..default()
+        }
+    }
+}
+
+fn surfaces(value: &str) -> Result<SurfaceMode, String> {
+    match value {
+        "auto" => Ok(SurfaceMode::Auto),
+        "templates" => Ok(SurfaceMode::Templates),
+        "cpu" => Ok(SurfaceMode::CpuMeshes),
+        _ => Err("expected auto, templates or cpu".into()),
+    }
+}
+
+fn size(value: &str) -> Result<(u32, u32), String> {
+    let reason = || "expected WIDTHxHEIGHT in pixels, both above 0, e.g. 1280x720".to_string();
+    let (w, h) = value.split_once('x').ok_or_else(reason)?;
+    match (w.parse(), h.parse()) {
+        (Ok(w), Ok(h)) if w > 0 && h > 0 => Ok((w, h)),
+        _ => Err(reason()),
+    }
+}
+
+fn fps(value: &str) -> Result<f64, String> {
+    match value.parse::<f64>() {
+        Ok(fps) if fps.is_finite() && fps > 0.0 => Ok(fps),
+        Ok(_) => Err("frames per second must be finite and above 0".into()),
+        Err(e) => Err(e.to_string()),
     }
 }
 
 fn main() -> ExitCode {
-    let args = match Args::parse() {
-        Ok(args) => args,
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::FAILURE;
-        }
-    };
+    let args: Args = argh::from_env();
     if let Err(e) = species_files_present() {
         eprintln!("aquarium: {e}");
         return ExitCode::FAILURE;
     }
-    if args.bench {
-        return match bench::run(
-            args.school,
-            args.frames.unwrap_or(600),
-            args.fps,
-            JellyfishSettings {
-                // Headless, Auto would mean CPU meshes; the windowed app on a GPU that
-                // can uses templates, so that is what the bench measures by default.
-                surfaces: match args.surfaces {
-                    SurfaceMode::Auto => SurfaceMode::Templates,
-                    chosen => chosen,
-                },
-                detail: args.detail.clone(),
-                ..scene::settings()
+    let result = if args.bench {
+        let settings = JellyfishSettings {
+            // Headless, Auto would mean CPU meshes; the windowed app on a GPU that can
+            // uses templates, so that is what the bench measures by default.
+            surfaces: match args.surfaces {
+                SurfaceMode::Auto => SurfaceMode::Templates,
+                chosen => chosen,
             },
-            task_pools(),
-        ) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("aquarium --bench: {e}");
-                ExitCode::FAILURE
-            }
+            detail: args.detail(),
+            ..scene::settings()
         };
+        let frames = args.frames.unwrap_or(600);
+        bench::run(args.school(), frames, args.fps, settings, task_pools())
+            .map_err(|e| format!("aquarium --bench: {e}"))
+    } else if let Some(path) = &args.screenshot {
+        picture::render(&args, path).map_err(|e| format!("aquarium: {e}"))
+    } else {
+        window(&args);
+        Ok(())
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::FAILURE
+        }
     }
-    if let Some(path) = &args.screenshot {
-        return match picture(&args, path) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("aquarium: {e}");
-                ExitCode::FAILURE
-            }
-        };
-    }
+}
+
+/// The aquarium in a window, with the panels.
+fn window(args: &Args) {
     let mut app = App::new();
     app.add_plugins((
         DefaultPlugins
@@ -212,9 +185,9 @@ fn main() -> ExitCode {
             })
             .set(task_pools()),
         AquariumPlugin {
-            school: args.school,
+            school: args.school(),
             surfaces: args.surfaces,
-            detail: args.detail.clone(),
+            detail: args.detail(),
         },
     ));
     if args.oit {
@@ -223,7 +196,6 @@ fn main() -> ExitCode {
     #[cfg(feature = "editor")]
     app.add_plugins(ui::plugin);
     app.run();
-    ExitCode::SUCCESS
 }
 
 /// Every core for the compute pool, where the plugin steps and meshes jellyfish in
@@ -235,72 +207,6 @@ fn task_pools() -> TaskPoolPlugin {
     options.compute.min_threads = cores;
     TaskPoolPlugin {
         task_pool_options: options,
-    }
-}
-
-/// Renders `args.frames` frames (default 120) offscreen and writes the last to `path`.
-fn picture(args: &Args, path: &std::path::Path) -> Result<(), String> {
-    let (width, height) = args.size;
-    let school = args.school;
-    let frames_to_render = args.frames.unwrap_or(120);
-    let (stir, surfaces, detail) = (args.stir, args.surfaces, args.detail.clone());
-    let (promote_at, oit) = (args.promote_at, args.oit);
-    let mut offscreen = screenshot::Offscreen::new(width, height, |app| {
-        app.add_plugins(AquariumPlugin {
-            school,
-            surfaces,
-            detail: detail.clone(),
-        });
-        if stir {
-            app.insert_resource(water::ScriptedStir::across_the_middle());
-        }
-        if oit {
-            app.insert_resource(camera::OrderIndependent);
-        }
-        if let Some(frame) = promote_at {
-            app.add_systems(First, promote_all_at(frame));
-        }
-    })
-    .map_err(|e| e.to_string())?;
-    println!("rendering offscreen on {}", offscreen.adapter);
-    let start = std::time::Instant::now();
-    let (mut simulation, mut meshing) = (0.0, 0.0);
-    for _ in 0..frames_to_render {
-        offscreen.update();
-        let store = offscreen.world().resource::<DiagnosticsStore>();
-        simulation += bench::value(store, &JellyfishDiagnostics::SIMULATION);
-        meshing += bench::value(store, &JellyfishDiagnostics::MESHING);
-    }
-    let frames = frames_to_render.max(1) as f64;
-    let wall = start.elapsed().as_secs_f64() * 1e3 / frames;
-    let store = offscreen.world().resource::<DiagnosticsStore>();
-    let count = bench::value(store, &JellyfishDiagnostics::COUNT);
-    println!(
-        "{} frames at {width}x{height}, {count} jellyfish: {wall:.1} ms per frame (render \
-         included), simulation {:.2} ms, meshing {:.2} ms per frame (CPU, summed over jellyfish)",
-        frames_to_render,
-        simulation / frames,
-        meshing / frames,
-    );
-    if let Some(tank) = offscreen
-        .world()
-        .get_resource::<bevy_jellyfish::plugin::TankWater>()
-    {
-        println!("tank water: fastest {:.2} units/s", tank.speed_max());
-    }
-    offscreen.capture(path)?;
-    println!("wrote {}", path.display());
-    Ok(())
-}
-
-/// A system that makes every jellyfish near from frame `at` on, all at once.
-fn promote_all_at(at: u32) -> impl FnMut(ResMut<JellyfishSettings>, Local<u32>) {
-    move |mut settings, mut frame| {
-        *frame += 1;
-        if *frame == at {
-            settings.detail.near = usize::MAX;
-            settings.detail.promotions_per_frame = usize::MAX;
-        }
     }
 }
 

@@ -10,6 +10,8 @@ use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
 use bevy_jellyfish::plugin::{JellyfishSlice, Steering, SwimMotion};
 use bevy_jellyfish::{Jellyfish, JellyfishSystems, Species};
+use rand::rngs::StdRng;
+use rand::{RngExt, SeedableRng};
 
 /// Scene units per metre: a 40 mm moon jelly is 0.8 units across, so a school of
 /// hundreds has room in the tank.
@@ -47,40 +49,18 @@ pub fn plugin(app: &mut App) {
         .add_systems(FixedUpdate, steer.before(JellyfishSystems::StepSlices));
 }
 
-/// A small deterministic generator (PCG-style), so a seed gives the same aquarium.
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next_u32(&mut self) -> u32 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 32) as u32
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 / (1 << 24) as f32
-    }
-
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-}
-
 /// Where jellyfish may be placed: clear of the walls, the floor and the surface.
-fn place(rng: &mut Rng) -> Vec3 {
+fn place(rng: &mut StdRng) -> Vec3 {
     Vec3::new(
-        rng.range(-HALF_WIDTH + 1.5, HALF_WIDTH - 1.5),
-        rng.range(FLOOR_ZONE, SURFACE - SURFACE_ZONE),
-        rng.range(-HALF_DEPTH + 1.5, HALF_DEPTH - 1.5),
+        rng.random_range(-HALF_WIDTH + 1.5..HALF_WIDTH - 1.5),
+        rng.random_range(FLOOR_ZONE..SURFACE - SURFACE_ZONE),
+        rng.random_range(-HALF_DEPTH + 1.5..HALF_DEPTH - 1.5),
     )
 }
 
 /// Rejection sampling: each new jellyfish is at least the sum of the two radii away from
 /// every other; after many failures the spacing is relaxed a little.
-pub fn positions(radii: &[f32], rng: &mut Rng) -> Vec<Vec3> {
+pub fn positions(radii: &[f32], rng: &mut StdRng) -> Vec<Vec3> {
     let mut placed: Vec<Vec3> = Vec::with_capacity(radii.len());
     for &r in radii {
         let mut spacing = 1.0;
@@ -111,7 +91,8 @@ fn respawn(
     for e in &existing {
         commands.entity(e).despawn();
     }
-    let mut rng = Rng(u64::from(school.seed) << 1 | 1);
+    // Seeded, so a seed gives the same aquarium every run (with the same `rand`).
+    let mut rng = StdRng::seed_from_u64(school.seed.into());
     let members: Vec<(&str, f32)> = SPECIES
         .iter()
         .flat_map(|s| std::iter::repeat_n(*s, school.per_species))
@@ -120,15 +101,15 @@ fn respawn(
     for ((name, radius), at) in members.iter().zip(positions(&radii, &mut rng)) {
         let species: Handle<Species> = assets.load(format!("species/{name}.species.ron"));
         // Mostly upright, leaning up to ~25 degrees in a random direction.
-        let lean = Quat::from_rotation_y(rng.range(0.0, std::f32::consts::TAU))
-            * Quat::from_rotation_x(rng.range(0.0, 0.45));
+        let lean = Quat::from_rotation_y(rng.random_range(0.0..std::f32::consts::TAU))
+            * Quat::from_rotation_x(rng.random_range(0.0..0.45));
         commands.spawn((
             Jellyfish::new(species)
-                .with_seed(rng.next_u32())
-                .with_phase(rng.unit()),
+                .with_seed(rng.random())
+                .with_phase(rng.random()),
             Swimmer {
                 radius: *radius,
-                wander: Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 100.0,
+                wander: Vec3::from_array(rng.random()) * 100.0,
             },
             Steering::heading(Vec3::Y).with_agility(AGILITY),
             Transform::from_translation(at)

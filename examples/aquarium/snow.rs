@@ -5,6 +5,8 @@
 use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
 use bevy_jellyfish::plugin::AmbientWater;
+use rand::rngs::StdRng;
+use rand::{RngExt, SeedableRng};
 
 const FLAKES: usize = 1200;
 /// How much of its travel a flake is drawn stretched over, s: long enough for a stir to
@@ -37,17 +39,18 @@ fn setup(
         unlit: true,
         ..default()
     });
-    let mut rng = crate::school::Rng(0x5eed);
+    // Seeded: the same snow every run.
+    let mut rng = StdRng::seed_from_u64(0x5eed);
     for _ in 0..FLAKES {
-        let at = MIN + (MAX - MIN) * Vec3::new(rng.unit(), rng.unit(), rng.unit());
-        let size = 0.5 + rng.unit();
+        let at = MIN + (MAX - MIN) * Vec3::from_array(rng.random());
+        let size = 0.5 + rng.random::<f32>();
         commands.spawn((
             Mesh3d(mesh.clone()),
             MeshMaterial3d(material.clone()),
             Transform::from_translation(at).with_scale(Vec3::splat(size)),
             Flake {
-                sink: 0.04 + 0.08 * rng.unit(),
-                phase: rng.unit() * std::f32::consts::TAU,
+                sink: 0.04 + 0.08 * rng.random::<f32>(),
+                phase: rng.random_range(0.0..std::f32::consts::TAU),
                 size,
             },
         ));

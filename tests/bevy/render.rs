@@ -20,6 +20,8 @@ use bevy_jellyfish::plugin::{
     JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode, SurfacePath,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -343,7 +345,7 @@ fn schools_stay_in_the_tank() {
 fn schools_are_placed_apart() {
     let radii: Vec<f32> = school::SPECIES.iter().flat_map(|(_, r)| [*r; 6]).collect();
     for seed in 0..20 {
-        let at = school::positions(&radii, &mut school::Rng(seed));
+        let at = school::positions(&radii, &mut StdRng::seed_from_u64(seed));
         for (i, (p, rp)) in at.iter().zip(&radii).enumerate() {
             assert!(p.x.abs() < tank::HALF_WIDTH && p.z.abs() < tank::HALF_DEPTH);
             assert!((0.0..tank::SURFACE).contains(&p.y));
