@@ -12,6 +12,7 @@
 //! [`MeshTag`]: bevy::mesh::MeshTag
 
 mod material;
+mod packed_layout;
 mod setup;
 mod upload;
 
@@ -43,6 +44,7 @@ pub(super) fn plugin(app: &mut App) {
     // Only where the app renders; add `JellyfishPlugin` after `DefaultPlugins`.
     if app.is_plugin_added::<PbrPlugin>() {
         bevy::asset::embedded_asset!(app, "surface.wgsl");
+        packed_layout::add(app);
         app.add_plugins(MaterialPlugin::<SurfaceMaterial>::default());
     }
     app.init_resource::<setup::Templates>()
