@@ -147,8 +147,10 @@ impl Shaders {
         for (name, defs) in pipelines() {
             match self.compose(&defs) {
                 Ok(module) => {
-                    let entry = module.entry_points.iter().find(|e| e.name == "vertex");
-                    if !entry.is_some_and(|e| e.stage == naga::ShaderStage::Vertex) {
+                    let vertex = |e: &naga::EntryPoint| {
+                        e.name == "vertex" && e.stage == naga::ShaderStage::Vertex
+                    };
+                    if !module.entry_points.iter().any(vertex) {
                         failures.push(format!("{name}: no vertex entry point `vertex`"));
                     }
                 }
