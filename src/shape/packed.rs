@@ -4,16 +4,18 @@
 //! The full surface is thousands of vertices; what makes it is much less: one disc pair per
 //! ring of the [`Profile`], one disc per ring of the tentacles, the variation's amplitudes
 //! and the individual's seed. [`ShapePacker::pack`] writes that block of `f32`s; the
-//! vertex shader (`plugin/surface.wgsl`) turns a template vertex's index into its position
-//! and normal from it. [`umbrella_vertex`] and [`tentacle_vertex`] are the same functions
-//! on the CPU, line for line, so the GPU's arithmetic is tested against [`build_into`]
-//! without a GPU.
+//! template surfaces' vertex shader (`src/plugin/render/templates/surface.wgsl`) turns a
+//! template vertex's index into its position and normal from it. [`umbrella_vertex`] and
+//! [`tentacle_vertex`] are the same functions on the CPU, line for line, so the GPU's
+//! arithmetic is tested against [`build_into`] without a GPU.
 //!
 //! Block layout (`f32` offsets; counts stored as `u32` bits): the header (`H_*`), then
-//! `rings + 1` rings of [`RING`] values (subumbrella disc, exumbrella disc, the two
-//! mesoglea normals, latitude, contraction), then `points` tentacle discs of [`DISC`],
+//! `rings + 1` rings of `RING` values (subumbrella disc, exumbrella disc, the two
+//! mesoglea normals, latitude, contraction), then `points` tentacle discs of `DISC`,
 //! then, if the species has oral tubes, [`oral::disc_count`] manubrium discs and as many
-//! arm discs.
+//! arm discs. The offsets and sizes are one table (`packed::layout`), which the plugin
+//! also hands the shader as the WGSL module `bevy_jellyfish::packed`: the shader imports
+//! them rather than copying them.
 //!
 //! [`build_into`]: super::build_into
 
@@ -30,65 +32,9 @@ use crate::species::Species;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
-/// Header offsets of the packed block: the individual's seed (as `f32` bits).
-pub const H_SEED: usize = 0;
-/// Rings (opposite pairs) from apex to margin.
-pub const H_RINGS: usize = 1;
-/// Segments around the axis.
-pub const H_SEGMENTS: usize = 2;
-/// Tentacles around the margin.
-pub const H_TENTACLES: usize = 3;
-/// Sides of each tentacle's tube.
-pub const H_SIDES: usize = 4;
-/// Points along each tentacle chain.
-pub const H_POINTS: usize = 5;
-/// Structural variation's amplitude, m.
-pub const H_STRUCTURAL: usize = 6;
-/// Structural lobes around the bell.
-pub const H_STRUCTURAL_FREQUENCY: usize = 7;
-/// 1 for `|sin|` lobes, 0 for `sin`.
-pub const H_STRUCTURAL_ABS: usize = 8;
-/// Compression ripples' amplitude, m.
-pub const H_COMPRESSION: usize = 9;
-/// Compression ripples around the bell.
-pub const H_COMPRESSION_FREQUENCY: usize = 10;
-/// Unstructured (noise) amplitude, m.
-pub const H_UNSTRUCTURED: usize = 11;
-/// The noise's frequency along the latitude.
-pub const H_LAT_FREQUENCY: usize = 12;
-/// The radius of the noise's circle around the bell.
-pub const H_LON_RADIUS: usize = 13;
-/// The noise's time coordinate `f_t·t`.
-pub const H_TAU: usize = 14;
-/// Tentacle tube radius, m.
-pub const H_TENTACLE_RADIUS: usize = 15;
-/// The aperture's disc ([`DISC`] values).
-pub const H_APERTURE: usize = 16;
-/// The margin's two mesoglea normals, left then right.
-pub const H_MARGIN_NORMALS: usize = 21;
-/// Tubes of the manubrium and the oral arms.
-pub const H_ORAL: usize = 25;
-/// 1 if oral tube 0 is a manubrium.
-pub const H_MANUBRIUM: usize = 26;
-/// The manubrium's radius, m.
-pub const H_MANUBRIUM_RADIUS: usize = 27;
-/// An oral arm's blade width, m.
-pub const H_ARM_WIDTH: usize = 28;
-/// The arms' ruffle depth, a fraction of the width.
-pub const H_ARM_FRILL: usize = 29;
-/// Ruffle waves along an arm.
-pub const H_ARM_WAVES: usize = 30;
-/// Rings along each oral tube.
-pub const H_ORAL_POINTS: usize = 31;
-/// The species' `tentacle_length_spread`.
-pub const H_TENTACLE_SPREAD: usize = 32;
-/// Header length.
-pub const HEADER: usize = 33;
-/// Values per disc: centre (x, y), radius, radial (x, y).
-pub const DISC: usize = 5;
-/// Values per ring: subumbrella disc, exumbrella disc, normals (left, right), latitude,
-/// contraction.
-pub const RING: usize = 2 * DISC + 6;
+pub(crate) mod layout;
+
+use layout::*;
 
 /// The length of the block for a resolution.
 pub fn block_len(res: &Resolution) -> usize {
@@ -177,11 +123,11 @@ impl ShapePacker {
             let at = out.len();
             out.resize(at + RING, 0.0);
             let ring = &mut out[at..];
-            write_disc(ring, &sub);
-            write_disc(&mut ring[DISC..], &ex);
-            write_normals(&mut ring[2 * DISC..], pair.normal);
-            ring[2 * DISC + 4] = pair.latitude;
-            ring[2 * DISC + 5] = pair.contraction;
+            write_disc(&mut ring[RING_SUBUMBRELLA..], &sub);
+            write_disc(&mut ring[RING_EXUMBRELLA..], &ex);
+            write_normals(&mut ring[RING_NORMALS..], pair.normal);
+            ring[RING_LATITUDE] = pair.latitude;
+            ring[RING_CONTRACTION] = pair.contraction;
         }
         if res.oral.count > 0 {
             oral::chain_discs(
@@ -209,7 +155,7 @@ fn write_disc(out: &mut [f32], d: &Disc) {
 }
 
 fn write_normals(out: &mut [f32], n: [Vec2; 2]) {
-    out[..4].copy_from_slice(&[n[0].x, n[0].y, n[1].x, n[1].y]);
+    out[..NORMALS].copy_from_slice(&[n[0].x, n[0].y, n[1].x, n[1].y]);
 }
 
 /// A read-only view of one packed block: what the vertex shader sees.
@@ -231,7 +177,7 @@ impl Block<'_> {
     }
 
     fn normals(&self, at: usize) -> [Vec2; 2] {
-        let n = &self.0[at..at + 4];
+        let n = &self.0[at..at + NORMALS];
         [Vec2::new(n[0], n[1]), Vec2::new(n[2], n[3])]
     }
 
@@ -287,9 +233,9 @@ fn column(j: usize, segments: usize) -> ((f32, f32), f32) {
 /// the analytic (swept mesoglea) normal, outward.
 fn umbrella_point(b: Block, surface: usize, k: usize, j: usize) -> (Vec3, Vec3) {
     let at = b.ring(k);
-    let (sub, ex) = (b.disc(at), b.disc(at + DISC));
-    let normals = b.normals(at + 2 * DISC);
-    let (latitude, contraction) = (b.0[at + 2 * DISC + 4], b.0[at + 2 * DISC + 5]);
+    let (sub, ex) = (b.disc(at + RING_SUBUMBRELLA), b.disc(at + RING_EXUMBRELLA));
+    let normals = b.normals(at + RING_NORMALS);
+    let (latitude, contraction) = (b.0[at + RING_LATITUDE], b.0[at + RING_CONTRACTION]);
     let side = if surface == 0 { 1.0 } else { -1.0 };
     if k == 0 {
         let n = sub.normal(normals, (1.0, 0.0));
@@ -374,6 +320,50 @@ fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
     p + (q - p) * (x - i as f32) + normal * along + sideways * side
 }
 
+/// Where a vertex of a run of tubes lies: tube `tube`, ring `ring` along it, and on the
+/// ring, `part`. The shader's `tube_index` is this function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct TubeIndex {
+    tube: usize,
+    ring: usize,
+    part: TubePart,
+}
+
+/// A tube vertex's place on its ring.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TubePart {
+    /// The cap before ring 0.
+    Start,
+    /// Column `i` of the ring's `sides + 1` (the last repeats the first, for the UVs).
+    Side(usize),
+    /// The cap after the last ring.
+    End,
+}
+
+/// Vertices per tube of `sides` sides and `points` rings: a cap, the rings, a cap.
+fn tube_len(layout: &TentacleLayout) -> usize {
+    2 + layout.points * (layout.sides + 1)
+}
+
+/// Vertex `index` of a run of tubes in `tentacles::write_topology`'s layout (which the
+/// oral tubes share).
+fn tube_index(layout: &TentacleLayout, index: usize) -> TubeIndex {
+    let per = tube_len(layout);
+    let (tube, r) = (index / per, index % per);
+    let (ring, part) = if r == 0 {
+        (0, TubePart::Start)
+    } else if r == per - 1 {
+        (layout.points - 1, TubePart::End)
+    } else {
+        let r = r - 1;
+        (
+            r / (layout.sides + 1),
+            TubePart::Side(r % (layout.sides + 1)),
+        )
+    };
+    TubeIndex { tube, ring, part }
+}
+
 /// Position and normal of vertex `index` of the hanging parts' template (the layout of
 /// `tentacles::write_topology`: the tentacles, then the oral tubes), as the vertex shader
 /// computes them.
@@ -383,31 +373,26 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
         sides: b.count(H_SIDES),
         points: b.count(H_POINTS),
     };
-    let per = 2 + layout.points * (layout.sides + 1);
-    if index >= layout.count * per {
-        return oral_vertex(b, index - layout.count * per);
+    let tentacles = layout.count * tube_len(&layout);
+    if index >= tentacles {
+        return oral_vertex(b, index - tentacles);
     }
-    let (t, r) = (index / per, index % per);
+    let TubeIndex {
+        tube: t,
+        ring: m,
+        part,
+    } = tube_index(&layout, index);
     let last = layout.points - 1;
-    let m = if r == 0 {
-        0
-    } else if r == per - 1 {
-        last
-    } else {
-        (r - 1) / (layout.sides + 1)
-    };
     let centre = tentacle_centre(b, t, m);
     let tangent = (tentacle_centre(b, t, (m + 1).min(last))
         - tentacle_centre(b, t, m.saturating_sub(1)))
     .normalize_or(Vec3::NEG_Y);
     let radius = b.0[H_TENTACLE_RADIUS];
-    if r == 0 {
-        return (centre - radius * tangent, -tangent);
-    }
-    if r == per - 1 {
-        return (centre + radius * tangent, tangent);
-    }
-    let i = (r - 1) % (layout.sides + 1);
+    let i = match part {
+        TubePart::Start => return (centre - radius * tangent, -tangent),
+        TubePart::End => return (centre + radius * tangent, tangent),
+        TubePart::Side(i) => i,
+    };
     let sigma = TAU * t as f32 / layout.count as f32;
     let (sin, cos) = sigma.sin_cos();
     let outward = b.disc(H_APERTURE).direction((cos, sin));
@@ -452,27 +437,22 @@ fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
         frill: b.0[H_ARM_FRILL],
         waves: b.0[H_ARM_WAVES],
     };
-    let per = 2 + layout.points * (layout.sides + 1);
-    let (t, r) = (index / per, index % per);
+    let TubeIndex {
+        tube: t,
+        ring: m,
+        part,
+    } = tube_index(&layout, index);
     let last = layout.points - 1;
-    let m = if r == 0 {
-        0
-    } else if r == per - 1 {
-        last
-    } else {
-        (r - 1) / (layout.sides + 1)
-    };
     let centre = |m| oral_centre(b, &layout, &style, t, m);
     let c = centre(m);
     let tangent =
         (centre((m + 1).min(last)) - centre(m.saturating_sub(1))).normalize_or(Vec3::NEG_Y);
     let manubrium = style.is_manubrium(t);
-    if r == 0 {
-        return (c - style.section(manubrium, 0.0).1 * tangent, -tangent);
-    }
-    if r == per - 1 {
-        return (c + style.section(manubrium, 1.0).1 * tangent, tangent);
-    }
+    let i = match part {
+        TubePart::Start => return (c - style.section(manubrium, 0.0).1 * tangent, -tangent),
+        TubePart::End => return (c + style.section(manubrium, 1.0).1 * tangent, tangent),
+        TubePart::Side(i) => i,
+    };
     let (arm, sigma) = if manubrium {
         (0, 0.0)
     } else {
@@ -480,7 +460,6 @@ fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     };
     let (sin, cos) = sigma.sin_cos();
     let n = tentacles::across(b.disc(H_APERTURE).direction((cos, sin)), tangent);
-    let i = (r - 1) % (layout.sides + 1);
     let (o, e) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
     let f = oral::fraction(&layout, m);
     oral::section_vertex(&style, manubrium, arm, f, c, tangent, n, (e, o))

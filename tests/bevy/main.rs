@@ -26,4 +26,5 @@ mod common;
 mod editor;
 mod plugin;
 mod render;
+mod shader;
 mod water_and_steering;

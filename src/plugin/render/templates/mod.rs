@@ -12,6 +12,7 @@
 //! [`MeshTag`]: bevy::mesh::MeshTag
 
 mod material;
+mod packed_layout;
 mod setup;
 mod upload;
 
@@ -35,6 +36,7 @@ pub(super) fn build(app: &mut App) {
     // Only where the app renders; add the plugins after `DefaultPlugins`.
     if app.is_plugin_added::<PbrPlugin>() {
         bevy::asset::embedded_asset!(app, "surface.wgsl");
+        packed_layout::add(app);
     }
     app.init_resource::<setup::Templates>()
         .init_resource::<upload::SurfaceSlots>()

@@ -5,13 +5,17 @@
 // tentacles), and this shader turns the vertex's index into its position and normal. It
 // mirrors `shape::packed` (`umbrella_vertex`, `tentacle_vertex`) and `shape::perlin` line
 // for line: change one, change the other (the Rust mirror is tested against the CPU mesh).
-// The same file serves the forward and the prepass/shadow pipelines (PREPASS_PIPELINE).
+// Its constants, `packed::*` (the block's layout and what the arithmetic shares with the
+// CPU mesh), are imported from the module the plugin writes from `shape::packed::layout`'s
+// table: none is copied here. The same file serves the forward and the prepass/shadow
+// pipelines (PREPASS_PIPELINE); a test composes and validates both without a GPU.
 
 #import bevy_pbr::{
     mesh_bindings::mesh,
     mesh_functions,
     view_transformations::position_world_to_clip,
 }
+#import bevy_jellyfish::packed
 #ifdef PREPASS_PIPELINE
 #import bevy_pbr::prepass_io::VertexOutput
 #else
@@ -20,43 +24,6 @@
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> offsets: array<u32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(101) var<storage, read> shapes: array<f32>;
-
-// Block layout: shape::packed's H_* constants.
-const H_SEED: u32 = 0u;
-const H_RINGS: u32 = 1u;
-const H_SEGMENTS: u32 = 2u;
-const H_TENTACLES: u32 = 3u;
-const H_SIDES: u32 = 4u;
-const H_POINTS: u32 = 5u;
-const H_STRUCTURAL: u32 = 6u;
-const H_STRUCTURAL_FREQUENCY: u32 = 7u;
-const H_STRUCTURAL_ABS: u32 = 8u;
-const H_COMPRESSION: u32 = 9u;
-const H_COMPRESSION_FREQUENCY: u32 = 10u;
-const H_UNSTRUCTURED: u32 = 11u;
-const H_LAT_FREQUENCY: u32 = 12u;
-const H_LON_RADIUS: u32 = 13u;
-const H_TAU: u32 = 14u;
-const H_TENTACLE_RADIUS: u32 = 15u;
-const H_APERTURE: u32 = 16u;
-const H_MARGIN_NORMALS: u32 = 21u;
-const H_ORAL: u32 = 25u;
-const H_MANUBRIUM: u32 = 26u;
-const H_MANUBRIUM_RADIUS: u32 = 27u;
-const H_ARM_WIDTH: u32 = 28u;
-const H_ARM_FRILL: u32 = 29u;
-const H_ARM_WAVES: u32 = 30u;
-const H_ORAL_POINTS: u32 = 31u;
-const H_TENTACLE_SPREAD: u32 = 32u;
-const HEADER: u32 = 33u;
-const DISC: u32 = 5u;
-const RING: u32 = 16u;
-// tentacles::SIDEWAYS and variation::APEX_FADE.
-const SIDEWAYS: f32 = 7.3;
-// species::limits::ORAL_SIDES.
-const ORAL_SIDES: u32 = 8u;
-const APEX_FADE: f32 = 0.25;
-const TAU: f32 = 6.28318530717958647692;
 
 struct Vertex {
     @builtin(instance_index) instance_index: u32,
@@ -201,60 +168,65 @@ fn count(base: u32, at: u32) -> u32 {
 }
 
 fn noise(base: u32, lat: f32, cs: vec2<f32>) -> f32 {
-    let r = shapes[base + H_LON_RADIUS];
+    let r = shapes[base + packed::H_LON_RADIUS];
     return perlin4(
-        count(base, H_SEED),
-        vec4(shapes[base + H_LAT_FREQUENCY] * lat, r * cs.x, r * cs.y, shapes[base + H_TAU]),
+        count(base, packed::H_SEED),
+        vec4(
+            shapes[base + packed::H_LAT_FREQUENCY] * lat,
+            r * cs.x,
+            r * cs.y,
+            shapes[base + packed::H_TAU],
+        ),
     );
 }
 
 fn lobe(base: u32, sigma: f32) -> f32 {
-    var s = sin(shapes[base + H_STRUCTURAL_FREQUENCY] * sigma);
-    if shapes[base + H_STRUCTURAL_ABS] > 0.5 {
+    var s = sin(shapes[base + packed::H_STRUCTURAL_FREQUENCY] * sigma);
+    if shapes[base + packed::H_STRUCTURAL_ABS] > 0.5 {
         s = abs(s);
     }
-    return shapes[base + H_STRUCTURAL] * s;
+    return shapes[base + packed::H_STRUCTURAL] * s;
 }
 
 fn ripple(base: u32, sigma: f32) -> f32 {
-    return shapes[base + H_COMPRESSION] * 0.5
-        * (1.0 + sin(shapes[base + H_COMPRESSION_FREQUENCY] * sigma));
+    return shapes[base + packed::H_COMPRESSION] * 0.5
+        * (1.0 + sin(shapes[base + packed::H_COMPRESSION_FREQUENCY] * sigma));
 }
 
 fn apex_fade(latitude: f32) -> f32 {
-    let x = clamp(latitude / APEX_FADE, 0.0, 1.0);
+    let x = clamp(latitude / packed::APEX_FADE, 0.0, 1.0);
     return x * x * (3.0 - 2.0 * x);
 }
 
 fn ring_at(base: u32, k: u32) -> u32 {
-    return base + HEADER + k * RING;
+    return base + packed::HEADER + k * packed::RING;
 }
 
 fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
     let at = ring_at(base, k);
-    let sub = read_disc(at);
-    let ex = read_disc(at + DISC);
-    let latitude = shapes[at + 2u * DISC + 4u];
-    let contraction = shapes[at + 2u * DISC + 5u];
+    let sub = read_disc(at + packed::RING_SUBUMBRELLA);
+    let ex = read_disc(at + packed::RING_EXUMBRELLA);
+    let latitude = shapes[at + packed::RING_LATITUDE];
+    let contraction = shapes[at + packed::RING_CONTRACTION];
     var side = 1.0;
     if surface == 1u {
         side = -1.0;
     }
     if k == 0u {
-        let n = disc_normal(sub, at + 2u * DISC, vec2(1.0, 0.0));
+        let n = disc_normal(sub, at + packed::RING_NORMALS, vec2(1.0, 0.0));
         var centre = sub.centre;
         if surface == 0u {
             centre = ex.centre;
         }
         return Surface(centre, n * side);
     }
-    let segments = count(base, H_SEGMENTS);
-    let sigma = TAU * f32(j % segments) / f32(segments);
+    let segments = count(base, packed::H_SEGMENTS);
+    let sigma = packed::TAU * f32(j % segments) / f32(segments);
     let cs = vec2(cos(sigma), sin(sigma));
-    let n = disc_normal(sub, at + 2u * DISC, cs);
+    let n = disc_normal(sub, at + packed::RING_NORMALS, cs);
     let fade = apex_fade(latitude);
     let shared_offset = lobe(base, sigma) * fade
-        + shapes[base + H_UNSTRUCTURED] * latitude * noise(base, latitude, cs);
+        + shapes[base + packed::H_UNSTRUCTURED] * latitude * noise(base, latitude, cs);
     var position: vec3<f32>;
     if surface == 0u {
         position = disc_point(ex, cs) + n * (shared_offset + ripple(base, sigma) * fade * contraction);
@@ -266,7 +238,7 @@ fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
 
 // Sheet ring l (-1 the exumbrellar apex ... 2·rings the subumbrellar apex) at column j.
 fn sheet_point(base: u32, l: i32, j: u32) -> vec3<f32> {
-    let r = i32(count(base, H_RINGS));
+    let r = i32(count(base, packed::H_RINGS));
     if l < 0 {
         return umbrella_point(base, 0u, 0u, j).position;
     }
@@ -280,8 +252,8 @@ fn sheet_point(base: u32, l: i32, j: u32) -> vec3<f32> {
 }
 
 fn umbrella_vertex(base: u32, index: u32) -> Surface {
-    let rings = count(base, H_RINGS);
-    let segments = count(base, H_SEGMENTS);
+    let rings = count(base, packed::H_RINGS);
+    let segments = count(base, packed::H_SEGMENTS);
     let surface_len = 1u + rings * (segments + 1u);
     let surface = index / surface_len;
     let r = index % surface_len;
@@ -306,32 +278,32 @@ fn umbrella_vertex(base: u32, index: u32) -> Surface {
 }
 
 fn tentacle_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
-    let count_t = count(base, H_TENTACLES);
-    let points = count(base, H_POINTS);
-    let sigma = TAU * f32(t) / f32(count_t);
+    let count_t = count(base, packed::H_TENTACLES);
+    let points = count(base, packed::H_POINTS);
+    let sigma = packed::TAU * f32(t) / f32(count_t);
     let cs = vec2(cos(sigma), sin(sigma));
-    let aperture = read_disc(base + H_APERTURE);
-    let normal = disc_normal(aperture, base + H_MARGIN_NORMALS, cs);
+    let aperture = read_disc(base + packed::H_APERTURE);
+    let normal = disc_normal(aperture, base + packed::H_MARGIN_NORMALS, cs);
     let sideways = disc_direction(aperture, vec2(-cs.y, cs.x));
     let fraction = f32(m) / f32(points - 1u);
     let lat = 1.0 + fraction;
-    let amplitude = shapes[base + H_UNSTRUCTURED];
+    let amplitude = shapes[base + packed::H_UNSTRUCTURED];
     let along = lobe(base, sigma) + amplitude * noise(base, lat, cs);
-    let side = amplitude * fraction * noise(base, lat + SIDEWAYS, cs);
+    let side = amplitude * fraction * noise(base, lat + packed::SIDEWAYS, cs);
     // tentacles::along, between the two discs around the drawn length.
     let x = fraction * tentacle_reach(base, t) * f32(points - 1u);
     let i = min(u32(x), points - 2u);
-    let first = ring_at(base, count(base, H_RINGS) + 1u);
-    let p = disc_point(read_disc(first + i * DISC), cs);
-    let q = disc_point(read_disc(first + (i + 1u) * DISC), cs);
+    let first = ring_at(base, count(base, packed::H_RINGS) + 1u);
+    let p = disc_point(read_disc(first + i * packed::DISC), cs);
+    let q = disc_point(read_disc(first + (i + 1u) * packed::DISC), cs);
     return p + (q - p) * (x - f32(i)) + normal * along + sideways * side;
 }
 
 // variation::tentacle_reach.
 fn tentacle_reach(base: u32, t: u32) -> f32 {
-    let seed = bitcast<u32>(shapes[base + H_SEED]);
+    let seed = bitcast<u32>(shapes[base + packed::H_SEED]);
     let u = f32(pcg(seed ^ pcg(t)) >> 8u) / 16777216.0;
-    return clamp(1.0 - shapes[base + H_TENTACLE_SPREAD] * u, 0.0, 1.0);
+    return clamp(1.0 - shapes[base + packed::H_TENTACLE_SPREAD] * u, 0.0, 1.0);
 }
 
 // tentacles::across and tentacles::perpendicular.
@@ -347,10 +319,39 @@ fn across(outward: vec3<f32>, tangent: vec3<f32>) -> vec3<f32> {
     return normalize(cross(tangent, other));
 }
 
+// shape::packed::TubeIndex: where a vertex of a run of tubes lies. `cap` is -1 for the
+// cap before ring 0, 1 for the cap after the last ring, 0 for column `side` of `ring`.
+struct TubeIndex {
+    tube: u32,
+    ring: u32,
+    side: u32,
+    cap: i32,
+};
+
+// shape::packed::tube_len: vertices per tube (a cap, `points` rings of `sides + 1`, a cap).
+fn tube_len(sides: u32, points: u32) -> u32 {
+    return 2u + points * (sides + 1u);
+}
+
+// shape::packed::tube_index: vertex `index` of a run of tubes in
+// tentacles::write_topology's layout (which the oral tubes share).
+fn tube_index(index: u32, sides: u32, points: u32) -> TubeIndex {
+    let per = tube_len(sides, points);
+    let tube = index / per;
+    let r = index % per;
+    if r == 0u {
+        return TubeIndex(tube, 0u, 0u, -1);
+    }
+    if r == per - 1u {
+        return TubeIndex(tube, points - 1u, 0u, 1);
+    }
+    return TubeIndex(tube, (r - 1u) / (sides + 1u), (r - 1u) % (sides + 1u), 0);
+}
+
 // ---- shape::oral (the manubrium and the oral arms, after the tentacles) ----
 
 fn has_manubrium(base: u32) -> bool {
-    return shapes[base + H_MANUBRIUM] > 0.5;
+    return shapes[base + packed::H_MANUBRIUM] > 0.5;
 }
 
 fn is_manubrium(base: u32, t: u32) -> bool {
@@ -364,19 +365,19 @@ fn arm_angle(base: u32, t: u32) -> vec2<f32> {
         first = 1u;
     }
     let a = t - first;
-    let arms = max(count(base, H_ORAL) - first, 1u);
-    return vec2(f32(a), TAU * f32(a) / f32(arms));
+    let arms = max(count(base, packed::H_ORAL) - first, 1u);
+    return vec2(f32(a), packed::TAU * f32(a) / f32(arms));
 }
 
 // OralStyle::section: (half-width, half-thickness).
 fn oral_section(base: u32, manubrium: bool, f: f32) -> vec2<f32> {
     if manubrium {
-        let r = shapes[base + H_MANUBRIUM_RADIUS] * (1.0 + 0.5 * f * f);
+        let r = shapes[base + packed::H_MANUBRIUM_RADIUS] * (1.0 + 0.5 * f * f);
         return vec2(r, r);
     }
     let x = clamp(f / 0.25, 0.0, 1.0);
     let grow = x * x * (3.0 - 2.0 * x);
-    let half = 0.5 * shapes[base + H_ARM_WIDTH] * (0.4 + 0.6 * grow) * (1.0 - 0.6 * f * f);
+    let half = 0.5 * shapes[base + packed::H_ARM_WIDTH] * (0.4 + 0.6 * grow) * (1.0 - 0.6 * f * f);
     return vec2(half, 0.3 * half);
 }
 
@@ -387,65 +388,60 @@ fn oral_disc_count(points: u32) -> u32 {
 
 // oral::centre, between the two discs around ring m.
 fn oral_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
-    let points = count(base, H_ORAL_POINTS);
-    let discs = ring_at(base, count(base, H_RINGS) + 1u) + count(base, H_POINTS) * DISC;
+    let points = count(base, packed::H_ORAL_POINTS);
+    let discs = ring_at(base, count(base, packed::H_RINGS) + 1u)
+        + count(base, packed::H_POINTS) * packed::DISC;
     let n = oral_disc_count(points);
     let x = f32(m) / f32(points - 1u) * f32(n - 1u);
     let i = min(u32(x), n - 2u);
     let w = x - f32(i);
     if is_manubrium(base, t) {
-        let a = read_disc(discs + i * DISC).centre;
-        let b = read_disc(discs + (i + 1u) * DISC).centre;
+        let a = read_disc(discs + i * packed::DISC).centre;
+        let b = read_disc(discs + (i + 1u) * packed::DISC).centre;
         return a + (b - a) * w;
     }
     let sigma = arm_angle(base, t).y;
     let cs = vec2(cos(sigma), sin(sigma));
-    let a = disc_point(read_disc(discs + (n + i) * DISC), cs);
-    let b = disc_point(read_disc(discs + (n + i + 1u) * DISC), cs);
+    let a = disc_point(read_disc(discs + (n + i) * packed::DISC), cs);
+    let b = disc_point(read_disc(discs + (n + i + 1u) * packed::DISC), cs);
     return a + (b - a) * w;
 }
 
 fn oral_vertex(base: u32, index: u32) -> Surface {
-    let points = count(base, H_ORAL_POINTS);
-    let per = 2u + points * (ORAL_SIDES + 1u);
-    let t = index / per;
-    let r = index % per;
+    let points = count(base, packed::H_ORAL_POINTS);
+    let at = tube_index(index, packed::ORAL_SIDES, points);
+    let t = at.tube;
+    let m = at.ring;
     let last = points - 1u;
-    var m = 0u;
-    if r == per - 1u {
-        m = last;
-    } else if r > 0u {
-        m = (r - 1u) / (ORAL_SIDES + 1u);
-    }
     let c = oral_centre(base, t, m);
     let tangent = normalize_or(
         oral_centre(base, t, min(m + 1u, last)) - oral_centre(base, t, max(m, 1u) - 1u),
         vec3(0.0, -1.0, 0.0),
     );
     let manubrium = is_manubrium(base, t);
-    if r == 0u {
+    if at.cap < 0 {
         return Surface(c - oral_section(base, manubrium, 0.0).y * tangent, -tangent);
     }
-    if r == per - 1u {
+    if at.cap > 0 {
         return Surface(c + oral_section(base, manubrium, 1.0).y * tangent, tangent);
     }
     var arm = vec2(0.0, 0.0);
     if !manubrium {
         arm = arm_angle(base, t);
     }
-    let outward = disc_direction(read_disc(base + H_APERTURE), vec2(cos(arm.y), sin(arm.y)));
+    let aperture = read_disc(base + packed::H_APERTURE);
+    let outward = disc_direction(aperture, vec2(cos(arm.y), sin(arm.y)));
     let n = across(outward, tangent);
     let b = cross(tangent, n);
-    let i = (r - 1u) % (ORAL_SIDES + 1u);
-    let phi = TAU * f32(i % ORAL_SIDES) / f32(ORAL_SIDES);
+    let phi = packed::TAU * f32(at.side % packed::ORAL_SIDES) / f32(packed::ORAL_SIDES);
     let e = cos(phi);
     let o = sin(phi);
     let f = f32(m) / f32(last);
     let section = oral_section(base, manubrium, f);
     var ruffle = 0.0;
     if !manubrium {
-        ruffle = shapes[base + H_ARM_FRILL] * 2.0 * section.x * e * e
-            * sin(TAU * shapes[base + H_ARM_WAVES] * f + 1.7 * arm.x);
+        ruffle = shapes[base + packed::H_ARM_FRILL] * 2.0 * section.x * e * e
+            * sin(packed::TAU * shapes[base + packed::H_ARM_WAVES] * f + 1.7 * arm.x);
     }
     let position = c + section.x * e * n + (section.y * o + ruffle) * b;
     let normal = normalize_or(section.y * e * n + section.x * o * b, n);
@@ -454,39 +450,34 @@ fn oral_vertex(base: u32, index: u32) -> Surface {
 
 // The tentacles, then the oral tubes.
 fn tentacle_vertex(base: u32, index: u32) -> Surface {
-    let count_t = count(base, H_TENTACLES);
-    let sides = count(base, H_SIDES);
-    let points = count(base, H_POINTS);
-    let per = 2u + points * (sides + 1u);
-    if index >= count_t * per {
-        return oral_vertex(base, index - count_t * per);
+    let count_t = count(base, packed::H_TENTACLES);
+    let sides = count(base, packed::H_SIDES);
+    let points = count(base, packed::H_POINTS);
+    let tentacles = count_t * tube_len(sides, points);
+    if index >= tentacles {
+        return oral_vertex(base, index - tentacles);
     }
-    let t = index / per;
-    let r = index % per;
+    let at = tube_index(index, sides, points);
+    let t = at.tube;
+    let m = at.ring;
     let last = points - 1u;
-    var m = 0u;
-    if r == per - 1u {
-        m = last;
-    } else if r > 0u {
-        m = (r - 1u) / (sides + 1u);
-    }
     let centre = tentacle_centre(base, t, m);
     let tangent = normalize_or(
         tentacle_centre(base, t, min(m + 1u, last)) - tentacle_centre(base, t, max(m, 1u) - 1u),
         vec3(0.0, -1.0, 0.0),
     );
-    let radius = shapes[base + H_TENTACLE_RADIUS];
-    if r == 0u {
+    let radius = shapes[base + packed::H_TENTACLE_RADIUS];
+    if at.cap < 0 {
         return Surface(centre - radius * tangent, -tangent);
     }
-    if r == per - 1u {
+    if at.cap > 0 {
         return Surface(centre + radius * tangent, tangent);
     }
-    let i = (r - 1u) % (sides + 1u);
-    let sigma = TAU * f32(t) / f32(count_t);
-    let outward = disc_direction(read_disc(base + H_APERTURE), vec2(cos(sigma), sin(sigma)));
+    let sigma = packed::TAU * f32(t) / f32(count_t);
+    let aperture = read_disc(base + packed::H_APERTURE);
+    let outward = disc_direction(aperture, vec2(cos(sigma), sin(sigma)));
     let n = across(outward, tangent);
-    let phi = TAU * f32(i % sides) / f32(sides);
+    let phi = packed::TAU * f32(at.side % sides) / f32(sides);
     let out = cos(phi) * n + sin(phi) * cross(tangent, n);
     return Surface(centre + radius * out, out);
 }

@@ -1,0 +1,238 @@
+//! The packed block's layout, in one table: the packer and its CPU mirror use these
+//! constants, and the vertex shader imports them from the WGSL module that [`wgsl`] writes
+//! from the same table (`#import bevy_jellyfish::packed`), so the shader holds no copy.
+//!
+//! The table also names the constants of other modules that the shader's arithmetic
+//! shares with the CPU mesh (`ORAL_SIDES`, `SIDEWAYS`, `APEX_FADE`) and `TAU`.
+
+// The WGSL writer's one caller is the plugin.
+#![cfg_attr(not(feature = "bevy"), allow(dead_code))]
+
+use crate::shape::tentacles::SIDEWAYS;
+use crate::shape::variation::APEX_FADE;
+use crate::species::limits::ORAL_SIDES;
+use std::f32::consts::TAU;
+
+/// The WGSL import path of the module [`wgsl`] writes.
+pub(crate) const IMPORT_PATH: &str = "bevy_jellyfish::packed";
+
+/// One constant of the table as the shader sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Value {
+    /// An offset, a size or a count: WGSL `u32`.
+    Count(usize),
+    /// WGSL `f32`.
+    Real(f32),
+}
+
+impl Value {
+    /// The WGSL type and literal.
+    pub(crate) fn wgsl(self) -> (&'static str, String) {
+        match self {
+            Value::Count(v) => {
+                let v = u32::try_from(v).expect("a layout constant fits a u32");
+                ("u32", format!("{v}u"))
+            }
+            // `{:?}` is the shortest literal that reads back as the same f32, always with
+            // a `.` or an exponent, so WGSL reads it as a float.
+            Value::Real(v) => ("f32", format!("{v:?}")),
+        }
+    }
+}
+
+/// One row of the table: a constant's name (the same in Rust and WGSL), its value and
+/// its doc comment's lines.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Constant {
+    pub name: &'static str,
+    pub value: Value,
+    pub doc: &'static [&'static str],
+}
+
+/// Defines the layout's own constants (`usize`) and, in `shared`, names constants
+/// defined elsewhere with their kind; [`TABLE`] lists both, in order.
+macro_rules! layout {
+    (
+        own { $( $(#[doc = $doc:literal])* $name:ident = $value:expr; )* }
+        shared { $( $(#[doc = $sdoc:literal])* $shared:ident: $kind:ident; )* }
+    ) => {
+        $( $(#[doc = $doc])* pub(crate) const $name: usize = $value; )*
+
+        /// Every constant the shader imports: the layout's, then the shared ones.
+        pub(crate) const TABLE: &[Constant] = &[
+            $( Constant { name: stringify!($name), value: Value::Count($name), doc: &[$($doc),*] }, )*
+            $( Constant { name: stringify!($shared), value: Value::$kind($shared), doc: &[$($sdoc),*] }, )*
+        ];
+    };
+}
+
+layout! {
+    own {
+        /// Header offsets of the packed block: the individual's seed (as `f32` bits).
+        H_SEED = 0;
+        /// Rings (opposite pairs) from apex to margin.
+        H_RINGS = 1;
+        /// Segments around the axis.
+        H_SEGMENTS = 2;
+        /// Tentacles around the margin.
+        H_TENTACLES = 3;
+        /// Sides of each tentacle's tube.
+        H_SIDES = 4;
+        /// Points along each tentacle chain.
+        H_POINTS = 5;
+        /// Structural variation's amplitude, m.
+        H_STRUCTURAL = 6;
+        /// Structural lobes around the bell.
+        H_STRUCTURAL_FREQUENCY = 7;
+        /// 1 for `|sin|` lobes, 0 for `sin`.
+        H_STRUCTURAL_ABS = 8;
+        /// Compression ripples' amplitude, m.
+        H_COMPRESSION = 9;
+        /// Compression ripples around the bell.
+        H_COMPRESSION_FREQUENCY = 10;
+        /// Unstructured (noise) amplitude, m.
+        H_UNSTRUCTURED = 11;
+        /// The noise's frequency along the latitude.
+        H_LAT_FREQUENCY = 12;
+        /// The radius of the noise's circle around the bell.
+        H_LON_RADIUS = 13;
+        /// The noise's time coordinate `f_t·t`.
+        H_TAU = 14;
+        /// Tentacle tube radius, m.
+        H_TENTACLE_RADIUS = 15;
+        /// The aperture's disc (`DISC` values).
+        H_APERTURE = 16;
+        /// The margin's two mesoglea normals (`NORMALS` values).
+        H_MARGIN_NORMALS = H_APERTURE + DISC;
+        /// Tubes of the manubrium and the oral arms.
+        H_ORAL = H_MARGIN_NORMALS + NORMALS;
+        /// 1 if oral tube 0 is a manubrium.
+        H_MANUBRIUM = 26;
+        /// The manubrium's radius, m.
+        H_MANUBRIUM_RADIUS = 27;
+        /// An oral arm's blade width, m.
+        H_ARM_WIDTH = 28;
+        /// The arms' ruffle depth, a fraction of the width.
+        H_ARM_FRILL = 29;
+        /// Ruffle waves along an arm.
+        H_ARM_WAVES = 30;
+        /// Rings along each oral tube.
+        H_ORAL_POINTS = 31;
+        /// The species' `tentacle_length_spread`.
+        H_TENTACLE_SPREAD = 32;
+        /// Header length.
+        HEADER = 33;
+        /// Values per disc: centre (x, y), radius, radial (x, y).
+        DISC = 5;
+        /// Values per pair of mesoglea normals: left (x, y), then right (x, y).
+        NORMALS = 4;
+        /// Offsets in a ring: the subumbrella disc.
+        RING_SUBUMBRELLA = 0;
+        /// The exumbrella disc.
+        RING_EXUMBRELLA = RING_SUBUMBRELLA + DISC;
+        /// The two mesoglea normals.
+        RING_NORMALS = RING_EXUMBRELLA + DISC;
+        /// The ring's latitude.
+        RING_LATITUDE = RING_NORMALS + NORMALS;
+        /// The ring's contraction.
+        RING_CONTRACTION = RING_LATITUDE + 1;
+        /// Values per ring.
+        RING = RING_CONTRACTION + 1;
+    }
+    shared {
+        /// Sides of the manubrium's and the oral arms' tubes (`species::limits`).
+        ORAL_SIDES: Count;
+        /// Latitude offset of the tentacles' sideways noise channel (`shape::tentacles`).
+        SIDEWAYS: Real;
+        /// Latitude below which structural and compression variation fade in
+        /// (`shape::variation`).
+        APEX_FADE: Real;
+        /// A turn, rad.
+        TAU: Real;
+    }
+}
+
+/// The WGSL module `bevy_jellyfish::packed`: every constant of [`TABLE`], typed.
+pub(crate) fn wgsl() -> String {
+    let mut out = format!(
+        "// Written by bevy_jellyfish from shape::packed::layout's table: the packed block's\n\
+         // layout and what the vertex shader shares with the CPU mesh. Change the table, not\n\
+         // this.\n\
+         #define_import_path {IMPORT_PATH}\n"
+    );
+    for c in TABLE {
+        let (ty, literal) = c.value.wgsl();
+        out.push('\n');
+        for line in c.doc {
+            out.push_str("//");
+            out.push_str(line);
+            out.push('\n');
+        }
+        out.push_str(&format!("const {}: {ty} = {literal};\n", c.name));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The header's fields cover it once each, in order: none overlaps another and none
+    /// is left out; and a ring's fields cover the ring.
+    #[test]
+    fn the_fields_tile_the_header_and_the_ring() {
+        let width = |name: &str| match name {
+            "H_APERTURE" => DISC,
+            "H_MARGIN_NORMALS" => NORMALS,
+            _ => 1,
+        };
+        let mut next = 0;
+        for c in TABLE.iter().filter(|c| c.name.starts_with("H_")) {
+            assert_eq!(c.value, Value::Count(next), "{}", c.name);
+            next += width(c.name);
+        }
+        assert_eq!(next, HEADER);
+        assert_eq!(
+            [
+                RING_SUBUMBRELLA,
+                RING_EXUMBRELLA,
+                RING_NORMALS,
+                RING_LATITUDE
+            ],
+            [0, DISC, 2 * DISC, 2 * DISC + NORMALS]
+        );
+        assert_eq!(RING, 2 * DISC + NORMALS + 2);
+    }
+
+    /// Each name once, each a WGSL identifier, and the module declares them all with the
+    /// table's values, reading back to the same numbers.
+    #[test]
+    fn the_module_declares_the_table() {
+        let module = wgsl();
+        assert!(module.contains(&format!("#define_import_path {IMPORT_PATH}\n")));
+        let declared: Vec<(&str, &str, &str)> = module
+            .lines()
+            .filter_map(|l| l.strip_prefix("const "))
+            .map(|l| {
+                let (name, rest) = l.split_once(": ").unwrap();
+                let (ty, rest) = rest.split_once(" = ").unwrap();
+                (name, ty, rest.strip_suffix(';').unwrap())
+            })
+            .collect();
+        assert_eq!(declared.len(), TABLE.len());
+        for (c, (name, ty, literal)) in TABLE.iter().zip(declared) {
+            assert_eq!(c.name, name);
+            assert!(!c.doc.is_empty(), "{name} is documented");
+            let read = match ty {
+                "u32" => Value::Count(literal.strip_suffix('u').unwrap().parse().unwrap()),
+                "f32" => Value::Real(literal.parse().unwrap()),
+                other => panic!("{name}: type {other}"),
+            };
+            assert_eq!(read, c.value, "{name}");
+        }
+        let mut names: Vec<_> = TABLE.iter().map(|c| c.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), TABLE.len(), "a name twice");
+    }
+}
