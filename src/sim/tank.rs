@@ -1,5 +1,5 @@
 //! A coarse 3D stable-fluids grid over a box: the water of a whole tank, stirred by pushes
-//! ([`Impulse`]) and coming slowly to rest.
+//! and coming slowly to rest.
 //!
 //! One step, Stam's recipe on cell-centred velocities: apply the pushes gathered since the
 //! last step, advect (semi-Lagrangian), let the water come to rest a little, and project
@@ -83,7 +83,8 @@ impl TankFluid {
         }
     }
 
-    /// The velocity of every cell, x fastest, then y, then z (see [`Self::grid`]).
+    /// The velocity of every cell, x fastest, then y, then z; cell (i, j, k) is centred at
+    /// `min + ((i, j, k) + 0.5) · cell`.
     pub fn velocities(&self) -> &[Vec3] {
         &self.velocity
     }
