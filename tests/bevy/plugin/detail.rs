@@ -1,0 +1,215 @@
+//! Levels of detail: tiers by size on screen within the budgets, replays of the recorded
+//! cycle, changes of tier without a jump, and edits while far.
+
+use super::*;
+
+fn set_detail(app: &mut App, near: usize, mid: usize) {
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+        near,
+        mid,
+        ..default()
+    };
+}
+
+/// The largest change of any umbrella vertex (mesh frame) and of the position from one
+/// frame to the next, over `frames` frames.
+fn largest_frame_changes(app: &mut App, e: Entity, frames: usize) -> (f32, f32) {
+    let (mut shape, mut travel) = (0.0f32, 0.0f32);
+    let mut last = (
+        umbrella_positions(app, e),
+        app.world().get::<Transform>(e).unwrap().translation,
+    );
+    for _ in 0..frames {
+        app.update();
+        let now = (
+            umbrella_positions(app, e),
+            app.world().get::<Transform>(e).unwrap().translation,
+        );
+        for (a, b) in now.0.iter().zip(&last.0) {
+            shape = shape.max(Vec3::from(*a).distance(Vec3::from(*b)));
+        }
+        travel = travel.max(now.1.distance(last.1));
+        last = now;
+    }
+    (shape, travel)
+}
+
+#[test]
+fn beyond_the_budget_jellyfish_replay_their_cycle_and_change_tier_without_a_jump() {
+    let mut app = app();
+    set_detail(&mut app, 1, 0);
+    let h = add_species(&mut app, species());
+    let spawn = |app: &mut App, x: f32| {
+        app.world_mut()
+            .spawn((
+                Jellyfish::new(h.clone()).with_phase(0.3),
+                Transform::from_xyz(x, 0.0, 0.0).with_scale(Vec3::splat(10.0)),
+            ))
+            .id()
+    };
+    let (a, b) = (spawn(&mut app, 0.0), spawn(&mut app, 5.0));
+    let (first, second) = (a.min(b), a.max(b));
+    run(&mut app, 30);
+    // No camera: the lowest entity is near, the other replays its species' cycle.
+    assert_eq!(slice(&app, first).tier(), Tier::Near);
+    assert_eq!(slice(&app, second).tier(), Tier::Far);
+    assert!(slice(&app, second).sim().is_none() && slice(&app, second).started());
+    // The replay swims the recorded cycle's distance.
+    let period = species().period();
+    let cycle = app
+        .world_mut()
+        .resource_mut::<CycleCaches>()
+        .get(&species())
+        .unwrap()
+        .swim_per_cycle();
+    let y = |app: &App| app.world().get::<Transform>(second).unwrap().translation.y;
+    let y0 = y(&app);
+    run(&mut app, (3.0 * period * 60.0).round() as usize);
+    let swum = (y(&app) - y0) / 10.0;
+    assert!(
+        (swum - 3.0 * cycle).abs() < 0.05 * 3.0 * cycle,
+        "far: {swum} m in 3 cycles, recorded {cycle} m per cycle"
+    );
+    // Frame to frame changes while far, then across a promotion and a demotion: no
+    // larger than the stroke's own.
+    let (shape, travel) = largest_frame_changes(&mut app, second, 60);
+    set_detail(&mut app, 2, 0);
+    let (promoted_shape, promoted_travel) = largest_frame_changes(&mut app, second, 60);
+    assert_eq!(slice(&app, second).tier(), Tier::Near);
+    assert!(slice(&app, second).sim().is_some());
+    set_detail(&mut app, 1, 0);
+    let (demoted_shape, demoted_travel) = largest_frame_changes(&mut app, second, 60);
+    assert_eq!(slice(&app, second).tier(), Tier::Far);
+    for (what, change, stroke) in [
+        ("shape, promoted", promoted_shape, shape),
+        ("shape, demoted", demoted_shape, shape),
+        ("travel, promoted", promoted_travel, travel),
+        ("travel, demoted", demoted_travel, travel),
+    ] {
+        assert!(
+            change <= 1.2 * stroke,
+            "{what}: {change} per frame against {stroke} in the stroke"
+        );
+    }
+}
+
+#[test]
+fn tiers_follow_size_on_screen_and_replay_identically() {
+    let positions = || {
+        let mut app = app();
+        set_detail(&mut app, 1, 1);
+        spawn_camera(&mut app);
+        let h = add_species(&mut app, species());
+        // Spawned farthest first, so entity order would pick the wrong ones.
+        let e: Vec<Entity> = [-16.0, -8.0, -4.0, -2.0]
+            .into_iter()
+            .map(|z| {
+                app.world_mut()
+                    .spawn((
+                        Jellyfish::new(h.clone()),
+                        Transform::from_xyz(0.0, 0.0, z).with_scale(Vec3::splat(10.0)),
+                    ))
+                    .id()
+            })
+            .collect();
+        run(&mut app, 90);
+        let tiers: Vec<Tier> = e.iter().map(|e| slice(&app, *e).tier()).collect();
+        assert_eq!(tiers, [Tier::Far, Tier::Far, Tier::Mid, Tier::Near]);
+        let store = app.world().resource::<DiagnosticsStore>();
+        let far = store
+            .get(&JellyfishDiagnostics::FAR)
+            .and_then(|d| d.value());
+        assert_eq!(far, Some(2.0));
+        e.iter()
+            .map(|e| app.world().get::<Transform>(*e).unwrap().translation)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        positions(),
+        positions(),
+        "a replay is the same, bit for bit"
+    );
+}
+
+#[test]
+fn an_edit_records_the_far_cycle_in_the_background() {
+    let mut app = app();
+    set_detail(&mut app, 1, 0);
+    let h = add_species(&mut app, species());
+    for x in [0.0, 5.0] {
+        app.world_mut()
+            .spawn((Jellyfish::new(h.clone()), Transform::from_xyz(x, 0.0, 0.0)));
+    }
+    run(&mut app, 10);
+    let edited = Species {
+        contraction_frequency: 1.0,
+        ..species()
+    };
+    {
+        let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
+        *assets.get_mut(&h).unwrap() = edited.clone();
+    }
+    // Frames go on while it records; the far jellyfish then plays the new cycle.
+    let mut frames = 0;
+    while app
+        .world()
+        .resource::<CycleCaches>()
+        .find(&edited)
+        .is_none()
+    {
+        assert!(frames < 2000, "the edited cycle was never recorded");
+        app.update();
+        frames += 1;
+    }
+    run(&mut app, 2);
+    let mut q = app.world_mut().query::<&JellyfishSlice>();
+    let far: Vec<_> = q
+        .iter(app.world())
+        .filter(|s| s.tier() == Tier::Far)
+        .collect();
+    assert_eq!(far.len(), 1);
+    assert_eq!(far[0].species(), Some(&edited));
+    assert!(!app.world().resource::<CycleCaches>().recording());
+}
+
+#[test]
+fn a_promoted_jellyfish_draws_what_it_would_have_drawn_far() {
+    // Two identical apps of far jellyfish; in one, all become near at once.
+    let make = || {
+        let mut app = app();
+        set_detail(&mut app, 0, 0);
+        let h = add_species(&mut app, species());
+        let e: Vec<Entity> = (0..4)
+            .map(|i| {
+                app.world_mut()
+                    .spawn((
+                        Jellyfish::new(h.clone()).with_phase(i as f32 * 0.23),
+                        Transform::from_xyz(i as f32, 0.0, 0.0).with_scale(Vec3::splat(10.0)),
+                    ))
+                    .id()
+            })
+            .collect();
+        run(&mut app, 100);
+        (app, e)
+    };
+    let (mut far, ef) = make();
+    let (mut promoted, ep) = make();
+    set_detail(&mut promoted, 100, 0);
+    // The live slice resumes the recorded state, so until the recorded cycle ends the
+    // frames are the same.
+    for _ in 0..4 {
+        far.update();
+        promoted.update();
+        for (a, b) in ef.iter().zip(&ep) {
+            assert_eq!(slice(&promoted, *b).tier(), Tier::Near);
+            let shape = umbrella_positions(&far, *a)
+                .iter()
+                .zip(&umbrella_positions(&promoted, *b))
+                .map(|(p, q)| Vec3::from(*p).distance(Vec3::from(*q)))
+                .fold(0.0f32, f32::max);
+            let at = |app: &App, e: Entity| app.world().get::<Transform>(e).unwrap().translation;
+            assert!(shape < 1e-6, "shape differs by {shape}");
+            assert!(at(&far, *a).distance(at(&promoted, *b)) < 1e-6);
+        }
+    }
+}
