@@ -1,5 +1,5 @@
-//! The enumerated fields of a species: the gonads' shape and two numerical choices kept
-//! with the species because its grid resolution is too.
+//! The enumerated fields of a species: the gonads' shape, the slice's geometry and two
+//! numerical choices kept with the species because its grid resolution is too.
 //!
 //! Their reflected type paths stay `bevy_jellyfish::species::*`, where they lived before
 //! this file split off, so that nothing reflected by path changes.
@@ -74,4 +74,26 @@ pub enum Kernel {
 impl Kernel {
     /// Every kernel, for pickers.
     pub const ALL: [Kernel; 2] = [Kernel::Roma3, Kernel::Bilinear];
+}
+
+/// The geometry of the slice the water and the bell are simulated in.
+///
+/// Both use the same fixed steps, co-moving open box, kernel and implicit springs; the
+/// shape layer reads either as the bell's symmetric half-profile mirrored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum SliceGeometry {
+    /// The paper's slice: a plane through the axis, as if the bell were infinitely long;
+    /// its wake is a pair of vortices.
+    #[default]
+    Planar,
+    /// A meridian half-plane of a body of revolution (r–z, no swirl): every point of the
+    /// slice is a ring around the axis, the muscle a hoop, the wake a vortex ring.
+    Axisymmetric,
+}
+
+impl SliceGeometry {
+    /// Every geometry, for pickers.
+    pub const ALL: [SliceGeometry; 2] = [SliceGeometry::Planar, SliceGeometry::Axisymmetric];
 }

@@ -7,7 +7,7 @@
 //! - `presets`: the shipped species and the paper's variations and numerics;
 //! - `derived`: what follows from the fields (cell size, period, the fixed step...);
 //! - `file`: RON text in and out, validated against [`limits`];
-//! - `choices`: the enumerated fields (gonad shape, advection, kernel);
+//! - `choices`: the enumerated fields (gonad shape, slice geometry, advection, kernel);
 //! - `error`: [`SpeciesError`].
 
 mod choices;
@@ -19,7 +19,7 @@ mod presets;
 #[cfg(test)]
 mod tests;
 
-pub use choices::{Advection, GonadShape, Kernel};
+pub use choices::{Advection, GonadShape, Kernel, SliceGeometry};
 pub use error::SpeciesError;
 
 use serde::{Deserialize, Serialize};
@@ -47,6 +47,8 @@ pub struct Species {
     /// Side of the square fluid domain in bell diameters (paper: 10; default 6: the box
     /// follows the bell and the wake leaves through its open end).
     pub domain_diameters: f32,
+    /// The slice's geometry: planar, or a body of revolution (see [`SliceGeometry`]).
+    pub slice_geometry: SliceGeometry,
     /// How the water carries its own velocity (see [`Advection`]).
     pub advection: Advection,
     /// How the bell's points read and push the water (see [`Kernel`]).

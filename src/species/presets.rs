@@ -1,7 +1,7 @@
 //! The shipped species (as in `assets/species/`) and the paper's own variations and
 //! numerics, one call away.
 
-use super::{Advection, GonadShape, Kernel, Species};
+use super::{Advection, GonadShape, Kernel, SliceGeometry, Species};
 
 impl Species {
     /// The moon jelly of the paper's Fig. 12, in SI units, simulated in a compact box that
@@ -13,6 +13,7 @@ impl Species {
             viscosity: 1.304e-3,
             density: 1025.0,
             domain_diameters: 6.0,
+            slice_geometry: SliceGeometry::Planar,
             advection: Advection::SemiLagrangian,
             kernel: Kernel::Roma3,
             boundary_width: 0.3,

@@ -11,22 +11,19 @@
 //! to tune and no residual divergence left behind; the elimination factors depend only on
 //! the grid, so they are computed once.
 
+use super::{Factors, shared};
 use rustdct::{DctPlanner, TransformType2And3};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 type Across = Arc<dyn TransformType2And3<f32>>;
 
-/// One transform plan per size, shared by every slice: planning costs more than a solve,
-/// and hundreds of jellyfish spawned together need not each plan their own.
+/// One transform plan per size, shared by every slice.
 fn plan(n: usize) -> Across {
     static PLANS: OnceLock<Mutex<HashMap<usize, Across>>> = OnceLock::new();
-    let plans = PLANS.get_or_init(Default::default);
-    let mut plans = plans.lock().unwrap_or_else(|e| e.into_inner());
-    plans
-        .entry(n)
-        .or_insert_with(|| DctPlanner::new().plan_dct2(n))
-        .clone()
+    shared(PLANS.get_or_init(Default::default), n, || {
+        DctPlanner::new().plan_dct2(n)
+    })
 }
 
 /// The exact pressure solve: a cosine transform across the channel diagonalises the
@@ -35,67 +32,39 @@ fn plan(n: usize) -> Across {
 pub(crate) struct PoissonSolver {
     n: usize,
     across: Across,
-    /// `1 / h²`: the tridiagonal systems' off-diagonal.
-    off: f64,
-    /// Elimination factors, shared by every slice of the same grid.
+    /// Elimination factors, shared by every slice of the same grid (115 KB at grid 60).
     factors: Arc<Factors>,
     /// The modes' values along the channel, `f64`.
     modes: Vec<f64>,
     scratch: Vec<f32>,
 }
 
-/// Elimination factors per row `j` and cosine mode `k` (row-major, like the field): the
-/// reciprocal of the eliminated diagonal, and the eliminated upper diagonal. They depend
-/// only on the grid, so slices of one species share them (115 KB at grid 60) and a
-/// school's working set stays in cache.
-struct Factors {
-    inverse_pivot: Vec<f64>,
-    upper: Vec<f64>,
-}
-
 /// The factors for `n` cells of size `h`, computed once per grid.
 fn factors(n: usize, h: f32) -> Arc<Factors> {
     type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
     static FACTORS: OnceLock<Shared> = OnceLock::new();
-    let all = FACTORS.get_or_init(Default::default);
-    let mut all = all.lock().unwrap_or_else(|e| e.into_inner());
-    all.entry((n, h.to_bits()))
-        .or_insert_with(|| Arc::new(Factors::new(n, h)))
-        .clone()
-}
-
-impl Factors {
-    fn new(n: usize, h: f32) -> Self {
+    shared(FACTORS.get_or_init(Default::default), (n, h.to_bits()), || {
         let (pi, h) = (std::f64::consts::PI, h as f64);
         let off = 1.0 / (h * h);
-        let (mut inverse_pivot, mut upper) = (vec![0.0; n * n], vec![0.0; n * n]);
-        for k in 0..n {
-            // The cosine mode's eigenvalue across the channel.
-            let lambda = (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off;
-            for j in 0..n {
-                // Bottom: ghost cell −φ (p = 0 on the face); top: ghost cell φ (∂p/∂y = 0).
-                let diagonal = lambda
-                    + if j == 0 {
-                        -3.0 * off
-                    } else if j == n - 1 {
-                        -off
-                    } else {
-                        -2.0 * off
-                    };
-                let eliminated = if j == 0 {
-                    diagonal
+        // The cosine modes' eigenvalues across the channel.
+        let lambda: Vec<f64> = (0..n)
+            .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
+            .collect();
+        // Bottom: ghost cell −φ (p = 0 on the face); top: ghost cell φ (∂p/∂y = 0).
+        let diagonal: Vec<f64> = (0..n)
+            .map(|j| {
+                if j == 0 {
+                    -3.0 * off
+                } else if j == n - 1 {
+                    -off
                 } else {
-                    diagonal - off * upper[(j - 1) * n + k]
-                };
-                inverse_pivot[j * n + k] = 1.0 / eliminated;
-                upper[j * n + k] = off / eliminated;
-            }
-        }
-        Self {
-            inverse_pivot,
-            upper,
-        }
-    }
+                    -2.0 * off
+                }
+            })
+            .collect();
+        let off = vec![off; n];
+        Arc::new(Factors::new(&off, &diagonal, &off, &lambda))
+    })
 }
 
 impl PoissonSolver {
@@ -106,7 +75,6 @@ impl PoissonSolver {
         Self {
             n,
             across,
-            off: 1.0 / (h as f64 * h as f64),
             factors: factors(n, h),
             modes: vec![0.0; n * n],
             scratch,
@@ -127,34 +95,8 @@ impl PoissonSolver {
             self.across
                 .process_dct2_with_scratch(row, &mut self.scratch);
         }
-        // DCT-III after DCT-II multiplies by n/2: undo it on the way in.
-        let norm = 2.0 / n as f64;
-        // Forward elimination up the channel, all modes of a row at once.
-        for j in 0..n {
-            let (done, rest) = self.modes.split_at_mut(j * n);
-            let here = &mut rest[..n];
-            let rhs = &field[j * n..][..n];
-            let pivot = &self.factors.inverse_pivot[j * n..][..n];
-            if j == 0 {
-                for ((m, r), p) in here.iter_mut().zip(rhs).zip(pivot) {
-                    *m = norm * *r as f64 * p;
-                }
-            } else {
-                let below = &done[(j - 1) * n..];
-                for (((m, r), p), b) in here.iter_mut().zip(rhs).zip(pivot).zip(below) {
-                    *m = (norm * *r as f64 - self.off * b) * p;
-                }
-            }
-        }
-        // Back substitution down it.
-        for j in (0..n - 1).rev() {
-            let (lower, upper_rows) = self.modes.split_at_mut((j + 1) * n);
-            let (here, above) = (&mut lower[j * n..], &upper_rows[..n]);
-            let upper = &self.factors.upper[j * n..][..n];
-            for ((m, a), u) in here.iter_mut().zip(above).zip(upper) {
-                *m -= u * a;
-            }
-        }
+        // DCT-III after DCT-II multiplies by n/2: undone on the way in.
+        self.factors.solve(field, 2.0 / n as f64, &mut self.modes);
         for (x, m) in field.iter_mut().zip(&self.modes) {
             *x = *m as f32;
         }
