@@ -36,15 +36,19 @@ impl Coupling {
         }
     }
 
-    /// Adds each located point's force (N per metre of depth) to the fluid's force density.
+    /// Adds each located point's force (N per unit of the slice's depth: a metre of a
+    /// planar slice, a radian of an axisymmetric one's rings) to the fluid's force
+    /// density, over each face's volume per unit depth.
     pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
-        let inv_area = 1.0 / (fluid.h * fluid.h);
+        let (row_u, row_v) = (fluid.n + 1, fluid.n);
+        let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
+        let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
         for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
             for (i, w) in su.iter() {
-                fluid.force_u[i] += w * f.x * inv_area;
+                force_u[i] += w * f.x * scale_u[i % row_u];
             }
             for (i, w) in sv.iter() {
-                fluid.force_v[i] += w * f.y * inv_area;
+                force_v[i] += w * f.y * scale_v[i % row_v];
             }
         }
     }

@@ -81,12 +81,8 @@ impl Solver {
 
     /// Solves for the forces at the predicted positions, `damping = τ/dt` adding the
     /// mesoglea's viscosity (backward Euler: the rate over the step, the stiffness
-    /// `k·(1 + τ/dt)`).
-    pub(crate) fn solve(&mut self, cons: &[Constraint], diag: f32, damping: f32, out: &mut [Vec2]) {
-        self.solve_each(cons, |_| diag, damping, out);
-    }
-
-    /// [`Self::solve`] with a diagonal of its own for each point (`diag(point)`).
+    /// `k·(1 + τ/dt)`), with a diagonal of its own for each point (`diag(point)`: the
+    /// water it drags along, or the tentacles' drag, over the step).
     pub(crate) fn solve_each(
         &mut self,
         cons: &[Constraint],

@@ -10,6 +10,7 @@
 //! an exact banded solve. That removes the elastic step limit (the paper's safety factor of
 //! 0.001) while keeping the forces an exact action–reaction set.
 
+mod depth;
 mod elements;
 mod implicit;
 mod network;
@@ -17,6 +18,7 @@ mod outline;
 mod rest_shape;
 mod tentacle;
 
+pub(crate) use depth::Depth;
 pub(crate) use elements::{Hinge, Muscle, Spring};
 pub use outline::{Outline, contains};
 pub(crate) use outline::{polygon_area, signed_area};
@@ -27,7 +29,8 @@ use elements::{Constraint, constraints, wrap_angle};
 use glam::Vec2;
 use implicit::Solver;
 use network::{
-    Tentacles, circumferential_muscles, hang_tentacles, mesoglea_hinges, subumbrellar_springs,
+    Tentacles, circumferential_muscles, hang_tentacles, mesoglea_hinges, ring_hoops,
+    subumbrellar_springs,
 };
 use std::ops::Range;
 use tentacle::TentacleDrag;
@@ -51,9 +54,11 @@ pub struct Body {
     /// The mesoglea's Kelvin–Voigt time τ (viscosity over modulus), s: every element
     /// resists its rate of strain with τ times its stiffness.
     pub(crate) damping_time: f32,
-    /// Each tentacle point's drag per unit of slip velocity, per metre of depth, N·s/m²
+    /// Each tentacle point's drag per unit of slip velocity, per unit depth, N·s/m²
     /// (set each step from the point's last slip).
     pub(crate) tentacle_drag: Vec<f32>,
+    /// Per unit of what depth every element is (a metre of a plane, a radian of rings).
+    pub(crate) depth: Depth,
     drag_model: TentacleDrag,
     bell_solver: Solver,
     tentacle_solver: Solver,
@@ -63,15 +68,22 @@ pub struct Body {
 impl Body {
     /// Builds the rest configuration with the aperture centre at `origin`, for fluid cells
     /// of size `h` (points sit about half a cell apart, as immersed boundaries need): the
-    /// paper's Fig. 4, part by part (see `network`).
+    /// paper's Fig. 4, part by part (see `network`). In the axisymmetric geometry the
+    /// axis is the vertical through `origin`, every point a ring about it, and the
+    /// muscle a hoop of each ring.
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
         let outline = rest_outline(species, h);
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();
+        let depth = Depth::new(species.slice_geometry, origin.x, h);
         let mut points: Vec<Vec2> = outline.iter().map(|p| *p + origin).collect();
-        let mut springs = subumbrellar_springs(species, &points);
-        let mut hinges = mesoglea_hinges(species, &points, spacing);
-        let muscles = circumferential_muscles(species, &points, spacing);
+        let mut springs = subumbrellar_springs(species, &points, depth);
+        let mut hinges = mesoglea_hinges(species, &points, spacing, depth);
+        let muscles = if depth.rings() {
+            ring_hoops(species, &points, spacing, &mut springs)
+        } else {
+            circumferential_muscles(species, &points, spacing)
+        };
         let Tentacles {
             ranges: tentacles,
             segment: seg_len,
@@ -82,12 +94,13 @@ impl Body {
             &mut points,
             &mut springs,
             &mut hinges,
+            depth,
         );
 
         let bell_solver = Solver::new(points.len(), Solver::bell_order(&(0..bell_len)));
         let tentacle_solver = Solver::new(points.len(), Solver::tentacle_order(&tentacles));
         let scratch = vec![Vec2::ZERO; points.len()];
-        let drag_model = TentacleDrag::new(species, seg_len);
+        let drag_model = TentacleDrag::new(species, seg_len, depth);
         Self {
             points,
             bell: 0..bell_len,
@@ -97,6 +110,7 @@ impl Body {
             muscles,
             damping_time: species.mesoglea_damping_time(),
             tentacle_drag: vec![drag_model.at(0.0); scratch.len()],
+            depth,
             drag_model,
             scratch,
             bell_solver,
@@ -160,7 +174,7 @@ impl Body {
         &mut self,
         predicted: &[Vec2],
         dt: f32,
-        mass_over_dt2: f32,
+        mass_over_dt2: &[f32],
         forces: &mut [Vec2],
         slip: &mut [Vec2],
     ) {
@@ -189,7 +203,7 @@ impl Body {
             self.tentacle_solver.prepare(&tentacles);
         }
         self.bell_solver
-            .solve(&bell, mass_over_dt2, damping, forces);
+            .solve_each(&bell, |i| mass_over_dt2[i], damping, forces);
         slip.iter_mut().for_each(|s| *s = Vec2::ZERO);
         if tentacles.is_empty() {
             return;
@@ -225,7 +239,7 @@ impl Body {
     /// implicit solve assumed; a smooth displacement's high-pass is of order (spacing/
     /// wavelength)², so everything the water does see is left to the water. Like the
     /// filters of vortex-sheet methods (Krasny 1986), only unresolved modes are touched.
-    pub(crate) fn relax_unresolved(&mut self, forces: &[Vec2], dt2_over_mass: f32) {
+    pub(crate) fn relax_unresolved(&mut self, forces: &[Vec2], dt2_over_mass: &[f32]) {
         let n = self.bell.len();
         if n < 3 {
             return;
@@ -242,7 +256,8 @@ impl Body {
                 -0.25 * (f[i - 1] - 2.0 * f[i] + f[i + 1])
             }
         };
-        let shift: Vec<Vec2> = (0..n).map(|i| dt2_over_mass * high(i)).collect();
+        let first = self.bell.start;
+        let shift: Vec<Vec2> = (0..n).map(|i| dt2_over_mass[first + i] * high(i)).collect();
         for (p, d) in self.points[self.bell.clone()].iter_mut().zip(shift) {
             *p += d;
         }

@@ -3,6 +3,7 @@
 //! circumferential muscle's springs across the bell, and the tentacles hanging from the
 //! aperture's margins.
 
+use super::depth::Depth;
 use super::elements::{
     Hinge, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge, spring,
 };
@@ -19,14 +20,20 @@ fn arc_fraction(i: usize, m: usize) -> f32 {
 }
 
 /// The subumbrellar chain: a Hookean spring between neighbouring points, its
-/// cross-section the local mesoglea thickness times unit depth.
-pub(super) fn subumbrellar_springs(species: &Species, subumbrella: &[Vec2]) -> Vec<Spring> {
+/// cross-section the local mesoglea thickness times unit depth (in r–z, the ring's arc
+/// per radian at the spring's middle).
+pub(super) fn subumbrellar_springs(
+    species: &Species,
+    subumbrella: &[Vec2],
+    depth: Depth,
+) -> Vec<Spring> {
     let m = subumbrella.len() / 2;
     (0..subumbrella.len() - 1)
         .map(|i| {
             let s = arc_fraction(i, m) * 0.5 + arc_fraction(i + 1, m) * 0.5;
             let t = mesoglea_thickness(species, s);
-            spring(subumbrella, i, i + 1, species.elastic_modulus * t)
+            let width = depth.at(0.5 * (subumbrella[i] + subumbrella[i + 1]));
+            spring(subumbrella, i, i + 1, species.elastic_modulus * t * width)
         })
         .collect()
 }
@@ -35,18 +42,24 @@ pub(super) fn subumbrellar_springs(species: &Species, subumbrella: &[Vec2]) -> V
 /// stiffness scales with t³; `angular_stiffness` is the value at the apex thickness for a
 /// 2 mm hinge, rescaled to this `spacing` so the bell's rigidity does not depend on the
 /// grid.
-pub(super) fn mesoglea_hinges(species: &Species, subumbrella: &[Vec2], spacing: f32) -> Vec<Hinge> {
+pub(super) fn mesoglea_hinges(
+    species: &Species,
+    subumbrella: &[Vec2],
+    spacing: f32,
+    depth: Depth,
+) -> Vec<Hinge> {
     let m = subumbrella.len() / 2;
     let hinge_scale = REFERENCE_HINGE_LENGTH / spacing;
     (1..subumbrella.len() - 1)
         .map(|i| {
             let t = mesoglea_thickness(species, arc_fraction(i, m)) / species.thickness;
+            let width = depth.at(subumbrella[i]);
             hinge(
                 subumbrella,
                 i - 1,
                 i,
                 i + 1,
-                species.angular_stiffness * t.powi(3) * hinge_scale,
+                species.angular_stiffness * t.powi(3) * hinge_scale * width,
             )
         })
         .collect()
@@ -92,6 +105,54 @@ pub(super) fn circumferential_muscles(
     muscles
 }
 
+/// The rings of an axisymmetric bell: each subumbrellar point and its mirror are one ring,
+/// and the element between them measures the ring's diameter, so its strain is the ring's
+/// hoop strain and its force on each point is the ring's hoop tension per radian (N): a
+/// hoop of the ring itself, not a spring across the water.
+///
+/// The ring's cross-section is real: the local mesoglea thickness times the band of the
+/// meridian one point stands for (`spacing`). Every ring is a hoop of mesoglea
+/// (`elastic_modulus` times that cross-section, at its rest radius), which resists the
+/// bell's being squeezed and pushes it open again; the rings of the muscle band (the
+/// margin to 3/4 of the way up, as in the plane) also carry the muscle around the same
+/// circumference, in parallel (`muscle_modulus × muscle_cross_section` of the ring), its
+/// rest length driven by the contraction function. `hoop_cross_section`, the planar
+/// slice's stand-in for this circumference, has no part here. (The muscle in series with
+/// its hoop, as the plane has it, let the strong real hoop pull a prolate bell past its
+/// commanded contraction until its margin folded in: Sarsia crumpled after 16 strokes.)
+/// Returns the driven muscles; the hoops join `springs`.
+pub(super) fn ring_hoops(
+    species: &Species,
+    subumbrella: &[Vec2],
+    spacing: f32,
+    springs: &mut Vec<Spring>,
+) -> Vec<Muscle> {
+    let bell_len = subumbrella.len();
+    let m = bell_len / 2;
+    let mut muscles = Vec::new();
+    for i in 0..m {
+        let j = bell_len - 1 - i;
+        let ring = mesoglea_thickness(species, arc_fraction(i, m)) * spacing;
+        let hoop = species.elastic_modulus * ring;
+        let level = 1.0 - i as f32 / m as f32;
+        springs.push(spring(subumbrella, i, j, hoop));
+        if level < 0.25 {
+            continue;
+        }
+        let fibre = species.muscle_modulus * species.muscle_cross_section * ring;
+        let relaxed = (subumbrella[j] - subumbrella[i]).length();
+        muscles.push(Muscle {
+            a: i,
+            b: j,
+            relaxed,
+            rest: relaxed,
+            stiffness: fibre / relaxed.max(1e-9),
+            level,
+        });
+    }
+    muscles
+}
+
 /// The tentacles hanging from the aperture's two margins.
 pub(super) struct Tentacles {
     /// Indices of the left and right tentacle points, margin outwards (margin excluded).
@@ -111,9 +172,11 @@ pub(super) fn hang_tentacles(
     points: &mut Vec<Vec2>,
     springs: &mut Vec<Spring>,
     hinges: &mut Vec<Hinge>,
+    depth: Depth,
 ) -> Tentacles {
     let margin_t = mesoglea_thickness(species, 1.0);
-    let tentacle_area = margin_t * species.tentacle_cross_section;
+    let width = depth.at(points[0]);
+    let tentacle_area = margin_t * species.tentacle_cross_section * width;
     let segments = ((species.tentacle_length / spacing).round() as usize)
         .max(if species.tentacle_length > 0.0 { 2 } else { 0 });
     let seg_len = if segments > 0 {
@@ -140,9 +203,11 @@ pub(super) fn hang_tentacles(
         // the margin itself; beyond it a tentacle bends as a thin cylinder of mesoglea
         // (see `tentacle_bending`) and trails in the flow. A root stiff over a third of
         // the length swung the tentacles as rods across the bell's axis.
-        let margin_hinge =
-            species.angular_stiffness * species.margin_thickness_ratio.powi(3) * hinge_scale;
-        let tip_hinge = tentacle_bending(species, seg_len.max(1e-6));
+        let margin_hinge = species.angular_stiffness
+            * species.margin_thickness_ratio.powi(3)
+            * hinge_scale
+            * width;
+        let tip_hinge = tentacle_bending(species, seg_len.max(1e-6), depth);
         let chain: Vec<usize> = std::iter::once(bell_neighbour[side])
             .chain(std::iter::once(margin))
             .chain(start..points.len())

@@ -2,6 +2,7 @@
 //! bell they hang from.
 
 use super::Body;
+use super::depth::Depth;
 use super::outline::contains;
 use crate::species::Species;
 
@@ -12,7 +13,8 @@ use crate::species::Species;
 /// tentacle at a centimetre per second is at Re ≈ 6), and never less than slender-body
 /// Stokes drag `4πμ/(ln(L/a) + 1/2)` (Lighthill 1976) as the flow stops. The slice stands
 /// for the bell's whole circumference, so the curtain has `count / (π·D)` tentacles per
-/// metre of depth; a point carries one segment.
+/// metre of depth; a point carries one segment. In r–z the fringe is a ring of
+/// tentacles, `count / 2π` of them per radian.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct TentacleDrag {
     radius: f32,
@@ -26,10 +28,10 @@ pub(super) struct TentacleDrag {
 
 impl TentacleDrag {
     /// A tentacle of the species, hanging straight, in segments of `segment` metres.
-    pub(crate) fn new(species: &Species, segment: f32) -> Self {
+    pub(crate) fn new(species: &Species, segment: f32, depth: Depth) -> Self {
         let a = species.tentacle_radius.max(1e-6);
         let length = species.tentacle_length.max(2.0 * a);
-        let per_depth = species.tentacle_count as f32 / (std::f32::consts::PI * species.diameter);
+        let per_depth = tentacles_per_depth(species, depth);
         Self {
             radius: a,
             density: species.density,
@@ -50,15 +52,25 @@ impl TentacleDrag {
     }
 }
 
-/// Bending stiffness per hinge of the tentacle curtain, per metre of depth, N·m/rad: one
-/// tentacle's `E·π·a⁴/4` (a cylinder of the bell's mesoglea), `count / (π·D)` of them per
-/// metre of depth, over one segment. Far softer than the bell's wall: the tentacles trail
-/// in the flow instead of swinging as rods.
-pub(super) fn tentacle_bending(species: &Species, segment: f32) -> f32 {
+/// Tentacles per unit depth: `count / (π·D)` per metre of a planar slice (the slice
+/// stands for the whole circumference), `count / 2π` per radian of a ring.
+fn tentacles_per_depth(species: &Species, depth: Depth) -> f32 {
+    let count = species.tentacle_count as f32;
+    if depth.rings() {
+        count / std::f32::consts::TAU
+    } else {
+        count / (std::f32::consts::PI * species.diameter)
+    }
+}
+
+/// Bending stiffness per hinge of the tentacle curtain, per unit depth, N·m/rad: one
+/// tentacle's `E·π·a⁴/4` (a cylinder of the bell's mesoglea), times the tentacles per unit
+/// depth, over one segment. Far softer than the bell's wall: the tentacles trail in the
+/// flow instead of swinging as rods.
+pub(super) fn tentacle_bending(species: &Species, segment: f32, depth: Depth) -> f32 {
     let a = species.tentacle_radius;
     let one = species.elastic_modulus * std::f32::consts::PI * a.powi(4) / 4.0;
-    let per_depth = species.tentacle_count as f32 / (std::f32::consts::PI * species.diameter);
-    one * per_depth / segment
+    one * tentacles_per_depth(species, depth) / segment
 }
 
 impl Body {

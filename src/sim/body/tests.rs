@@ -54,8 +54,20 @@ fn implicit_forces_match_explicit_ones_for_tiny_steps_and_soften_for_large() {
         vec![Vec2::ZERO; n],
     );
     let mass = 1025.0 * 0.004 * 0.004;
-    b.implicit_forces(&x, 1e-6, mass / 1e-12, &mut small_dt, &mut slip);
-    b.implicit_forces(&x, 0.05, mass / 0.05f32.powi(2), &mut large_dt, &mut slip);
+    b.implicit_forces(
+        &x,
+        1e-6,
+        &vec![mass / 1e-12; x.len()],
+        &mut small_dt,
+        &mut slip,
+    );
+    b.implicit_forces(
+        &x,
+        0.05,
+        &vec![mass / 0.05f32.powi(2); x.len()],
+        &mut large_dt,
+        &mut slip,
+    );
     let norm = |f: &[Vec2]| f.iter().map(|v| v.length_squared()).sum::<f32>().sqrt();
     // Tiny step: implicit equals explicit. Large step: the stiff modes are damped.
     let diff: f32 = explicit
@@ -85,7 +97,13 @@ fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
     let n = x.len();
     let (mut forces, mut slip) = (vec![Vec2::ZERO; n], vec![Vec2::ZERO; n]);
     let mass = 1025.0 * 0.004 * 0.004;
-    b.implicit_forces(&x, 0.03, mass / 0.03f32.powi(2), &mut forces, &mut slip);
+    b.implicit_forces(
+        &x,
+        0.03,
+        &vec![mass / 0.03f32.powi(2); x.len()],
+        &mut forces,
+        &mut slip,
+    );
     let scale: f32 = forces.iter().map(|f| f.length()).sum();
     let net: Vec2 = forces.iter().sum();
     assert!(scale > 0.0);

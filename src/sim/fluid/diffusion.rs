@@ -1,7 +1,7 @@
 //! Viscosity: explicit Laplacian sweeps of the velocity, sub-stepped where one sweep
 //! would be unstable.
 
-use super::Fluid;
+use super::{Fluid, RINGS_SWEEP_LIMIT};
 
 /// Most explicit diffusion sweeps in one step (see [`Fluid::diffuse`]).
 pub(crate) const MAX_DIFFUSION_SWEEPS: usize = 32;
@@ -15,6 +15,17 @@ impl Fluid {
     pub(crate) fn diffuse(&mut self, dt: f32) {
         let alpha = self.nu * dt / (self.h * self.h);
         if alpha.is_nan() || alpha <= 0.0 {
+            return;
+        }
+        if let Some(rings) = self.rings.take() {
+            // The same cap on the viscosity as the plane's, in sweeps half as long.
+            let most = MAX_DIFFUSION_SWEEPS * 2;
+            let substeps = ((alpha / RINGS_SWEEP_LIMIT).ceil() as usize).clamp(1, most);
+            let a = (alpha / substeps as f32).min(RINGS_SWEEP_LIMIT);
+            for _ in 0..substeps {
+                self.ring_viscosity_sweep(&rings, a);
+            }
+            self.rings = Some(rings);
             return;
         }
         let substeps = ((alpha / 0.2).ceil() as usize).clamp(1, MAX_DIFFUSION_SWEEPS);

@@ -38,10 +38,22 @@ impl Fluid {
         (u * u + v * v).sqrt()
     }
 
-    /// Total kinetic energy per unit depth, J/m.
+    /// Total kinetic energy per unit depth: J/m in the plane, J per radian of an
+    /// axisymmetric slice.
     pub fn kinetic_energy(&self) -> f32 {
-        let sum: f32 = self.u.iter().chain(&self.v).map(|x| x * x).sum();
-        0.5 * self.rho * sum * self.h * self.h
+        let Some(rings) = self.rings() else {
+            let sum: f32 = self.u.iter().chain(&self.v).map(|x| x * x).sum();
+            return 0.5 * self.rho * sum * self.h * self.h;
+        };
+        // Each face weighs its radius; the mirrored grid holds each ring twice.
+        let weighted = |field: &[f32], radii: &[f32]| -> f32 {
+            field
+                .chunks_exact(radii.len())
+                .flat_map(|row| row.iter().zip(radii).map(|(x, r)| r * x * x))
+                .sum()
+        };
+        let sum = weighted(&self.u, &rings.face) + weighted(&self.v, &rings.cell);
+        0.25 * self.rho * sum * self.h * self.h
     }
 
     /// Whether every velocity is finite.

@@ -16,6 +16,7 @@
 //! - `boundaries`: the side walls, the inflow, the open wake end and its absorbing layer;
 //! - `frame`: the co-moving box (Galilean changes of frame, whole-cell shifts);
 //! - `symmetry`: the mirror about the bell's axis;
+//! - `rings`: the axisymmetric slice's r-weighted operators (see [`SliceGeometry`]);
 //! - `measure`: divergence, speeds, energy.
 
 mod advection;
@@ -25,12 +26,14 @@ mod frame;
 mod immersed;
 mod measure;
 mod projection;
+mod rings;
 mod sampling;
 mod symmetry;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use crate::species::{Advection, Kernel};
+pub(crate) use crate::species::{Advection, Kernel, SliceGeometry};
+pub(crate) use rings::{RINGS_SWEEP_LIMIT, Rings};
 
 use super::pressure::PoissonSolver;
 
@@ -78,6 +81,13 @@ pub struct Fluid {
     bounds_v: Vec<(f32, f32)>,
     phi: Vec<f32>,
     poisson: PoissonSolver,
+    /// The radii and pressure solve of an axisymmetric slice; `None` for a planar one.
+    rings: Option<Box<Rings>>,
+    /// What a unit of spread force adds to the force density of each column of `u` and
+    /// `v` faces: `1/h²` in the plane, `1/(r·h²)` for rings (a face's volume per unit of
+    /// the slice's depth).
+    pub(crate) spread_u: Vec<f32>,
+    pub(crate) spread_v: Vec<f32>,
 }
 
 /// Which staggered component a sample refers to.
@@ -118,6 +128,35 @@ impl Fluid {
             bounds_v: vec![(0.0, 0.0); faces],
             phi: vec![0.0; n * n],
             poisson: PoissonSolver::new(n, h),
+            rings: None,
+            spread_u: vec![1.0 / (h * h); n + 1],
+            spread_v: vec![1.0 / (h * h); n],
+        }
+    }
+
+    /// Makes this the slice of `geometry`: planar, or axisymmetric about [`Fluid::axis`]
+    /// (which holds the flow mirror-symmetric, as a meridian of a body of revolution is).
+    pub(crate) fn set_geometry(&mut self, geometry: SliceGeometry) {
+        let (n, h) = (self.n, self.h);
+        match geometry {
+            SliceGeometry::Planar => {
+                self.rings = None;
+                self.phi = vec![0.0; n * n];
+                self.spread_u.fill(1.0 / (h * h));
+                self.spread_v.fill(1.0 / (h * h));
+            }
+            SliceGeometry::Axisymmetric => {
+                let rings = Rings::new(n, h);
+                for (s, r) in self.spread_u.iter_mut().zip(&rings.face) {
+                    *s = 1.0 / (r * h * h);
+                }
+                for (s, r) in self.spread_v.iter_mut().zip(&rings.cell) {
+                    *s = 1.0 / (r * h * h);
+                }
+                self.phi = vec![0.0; rings.solved * n];
+                self.rings = Some(Box::new(rings));
+                self.mirror = true;
+            }
         }
     }
 
@@ -144,6 +183,8 @@ impl Fluid {
         f32s.iter().map(|v| v.len() * 4).sum::<usize>()
             + (self.bounds_u.len() + self.bounds_v.len()) * 8
             + self.poisson.bytes()
+            + self.rings.as_ref().map_or(0, |r| r.bytes())
+            + (self.spread_u.len() + self.spread_v.len()) * 4
     }
 
     /// One step of `dt` seconds, in this order:
@@ -164,7 +205,7 @@ impl Fluid {
         self.apply_force(dt);
         self.diffuse(dt);
         self.absorb(dt);
-        if self.mirror {
+        if self.mirror || self.rings.is_some() {
             self.symmetrise();
         }
         self.project();

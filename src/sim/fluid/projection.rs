@@ -6,6 +6,9 @@ use super::Fluid;
 impl Fluid {
     /// Removes the divergent part of the velocity with an exact Poisson solve.
     pub(crate) fn project(&mut self) {
+        if self.rings.is_some() {
+            return self.project_rings();
+        }
         let (n, h) = (self.n, self.h);
         // φ = div u per cell (as `divergence` computes it), row by row.
         for j in 0..n {
@@ -38,17 +41,24 @@ impl Fluid {
         }
     }
 
-    /// Discrete divergence of cell `(i, j)`, 1/s.
+    /// Discrete divergence of cell `(i, j)`, 1/s (r-weighted in an axisymmetric slice).
     pub(crate) fn divergence(&self, i: usize, j: usize) -> f32 {
+        if let Some(rings) = self.rings() {
+            return self.ring_divergence(rings, i, j);
+        }
         let n = self.n;
         let du = self.u[j * (n + 1) + i + 1] - self.u[j * (n + 1) + i];
         let dv = self.v[(j + 1) * n + i] - self.v[j * n + i];
         (du + dv) / self.h
     }
 
-    /// max |div u| after the last projection, 1/s.
-    /// Measured on demand, so the step does not pay for a diagnostic.
+    /// max |div u| after the last projection, 1/s (an axisymmetric slice: over its solved
+    /// half, the mirrored one being its copy). Measured on demand, so the step does not
+    /// pay for a diagnostic.
     pub(crate) fn divergence_max(&self) -> f32 {
+        if let Some(rings) = self.rings() {
+            return self.ring_divergence_max(rings);
+        }
         let n = self.n;
         (0..n * n)
             .map(|c| self.divergence(c % n, c / n).abs())

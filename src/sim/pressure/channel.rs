@@ -43,28 +43,32 @@ pub(crate) struct PoissonSolver {
 fn factors(n: usize, h: f32) -> Arc<Factors> {
     type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
     static FACTORS: OnceLock<Shared> = OnceLock::new();
-    shared(FACTORS.get_or_init(Default::default), (n, h.to_bits()), || {
-        let (pi, h) = (std::f64::consts::PI, h as f64);
-        let off = 1.0 / (h * h);
-        // The cosine modes' eigenvalues across the channel.
-        let lambda: Vec<f64> = (0..n)
-            .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
-            .collect();
-        // Bottom: ghost cell −φ (p = 0 on the face); top: ghost cell φ (∂p/∂y = 0).
-        let diagonal: Vec<f64> = (0..n)
-            .map(|j| {
-                if j == 0 {
-                    -3.0 * off
-                } else if j == n - 1 {
-                    -off
-                } else {
-                    -2.0 * off
-                }
-            })
-            .collect();
-        let off = vec![off; n];
-        Arc::new(Factors::new(&off, &diagonal, &off, &lambda))
-    })
+    shared(
+        FACTORS.get_or_init(Default::default),
+        (n, h.to_bits()),
+        || {
+            let (pi, h) = (std::f64::consts::PI, h as f64);
+            let off = 1.0 / (h * h);
+            // The cosine modes' eigenvalues across the channel.
+            let lambda: Vec<f64> = (0..n)
+                .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
+                .collect();
+            // Bottom: ghost cell −φ (p = 0 on the face); top: ghost cell φ (∂p/∂y = 0).
+            let diagonal: Vec<f64> = (0..n)
+                .map(|j| {
+                    if j == 0 {
+                        -3.0 * off
+                    } else if j == n - 1 {
+                        -off
+                    } else {
+                        -2.0 * off
+                    }
+                })
+                .collect();
+            let off = vec![off; n];
+            Arc::new(Factors::new(&off, &diagonal, &off, &lambda))
+        },
+    )
 }
 
 impl PoissonSolver {

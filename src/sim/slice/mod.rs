@@ -13,7 +13,7 @@ use super::coupling::Coupling;
 use super::fluid::Fluid;
 use super::muscle::MuscleDrive;
 use super::oral_arms::OralArms;
-use crate::species::{Species, SpeciesError};
+use crate::species::{SliceGeometry, Species, SpeciesError};
 use frame::ComovingFrame;
 use glam::Vec2;
 /// Depth of the absorbing layer at the wake end, in bell diameters.
@@ -55,6 +55,9 @@ pub struct SliceSim {
     velocity: Vec<Vec2>,
     predicted: Vec<Vec2>,
     forces: Vec<Vec2>,
+    /// Each point's dragged water mass over dt², and its reciprocal, for the step.
+    mass_over_dt2: Vec<f32>,
+    dt2_over_mass: Vec<f32>,
     /// Tentacle points' slip through the water over the last step, m.
     slip: Vec<Vec2>,
     rest_bell: Vec<Vec2>,
@@ -74,6 +77,7 @@ impl SliceSim {
         fluid.kernel = species.kernel;
         fluid.kernel_stretch = Self::kernel_stretch(species);
         fluid.mirror = true;
+        fluid.set_geometry(species.slice_geometry);
         let sponge_cells = (SPONGE_DIAMETERS * species.diameter / h).round() as usize;
         fluid.set_sponge(sponge_cells, SPONGE_RATE * species.contraction_frequency);
         let body = Body::new(species, Self::rest_origin(species, &fluid), h);
@@ -102,6 +106,8 @@ impl SliceSim {
             velocity: vec![Vec2::ZERO; count],
             predicted: vec![Vec2::ZERO; count],
             forces: vec![Vec2::ZERO; count],
+            mass_over_dt2: vec![0.0; count],
+            dt2_over_mass: vec![0.0; count],
             slip: vec![Vec2::ZERO; count],
             rest_bell,
             tentacle_view: [Vec::new(), Vec::new()],
@@ -324,10 +330,11 @@ impl SliceSim {
     /// Whether the slice is held mirror-symmetric about the vertical through the domain
     /// centre (on by default). The paper models axially symmetric jellyfish; a 2D wake,
     /// unlike a 3D vortex ring, sheds asymmetrically and tips a free slice over within a
-    /// few strokes from round-off alone. Turn it off to let the slice tilt (steering).
+    /// few strokes from round-off alone. Turn it off to let a planar slice tilt; an
+    /// axisymmetric slice is a body of revolution and stays symmetric whatever is set.
     pub fn set_mirror_symmetry(&mut self, on: bool) {
         self.mirror_symmetry = on;
-        self.fluid.mirror = on;
+        self.fluid.mirror = on || self.fluid.rings().is_some();
     }
 
     /// Holds the stroke (`true`) or resumes it: while resting the muscles keep the length
@@ -395,7 +402,8 @@ impl SliceSim {
             || species.height != self.species.height
             || species.domain_diameters != self.species.domain_diameters
             || species.tentacle_length != self.species.tentacle_length
-            || species.thickness != self.species.thickness;
+            || species.thickness != self.species.thickness
+            || species.slice_geometry != self.species.slice_geometry;
         if rebuild {
             let mut fresh = SliceSim::new(species)?;
             fresh.clock = self
@@ -410,8 +418,13 @@ impl SliceSim {
             return Ok(());
         }
         let h = self.fluid.h;
-        let mut rebuilt = Body::new(species, Vec2::ZERO, h);
-        // Same topology: keep positions, take the new stiffnesses.
+        // Same topology: keep positions, take the new stiffnesses (rings about the live
+        // axis).
+        let origin = match species.slice_geometry {
+            SliceGeometry::Planar => Vec2::ZERO,
+            SliceGeometry::Axisymmetric => Vec2::X * self.fluid.axis(),
+        };
+        let mut rebuilt = Body::new(species, origin, h);
         rebuilt.points.clone_from(&self.body.points);
         self.body = rebuilt;
         self.fluid.nu = species.kinematic_viscosity();

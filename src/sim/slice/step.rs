@@ -63,11 +63,23 @@ impl SliceSim {
         {
             *p = *x + dt * *v;
         }
+        // The water a point drags along: per metre of a plane, per radian of its ring.
         let mass = ADDED_MASS * self.species.density * self.fluid.h * self.fluid.h;
+        let depth = self.body.depth;
+        for ((m, inverse), p) in self
+            .mass_over_dt2
+            .iter_mut()
+            .zip(&mut self.dt2_over_mass)
+            .zip(&self.body.points)
+        {
+            let mass = mass * depth.at(*p);
+            *m = mass / (dt * dt);
+            *inverse = dt * dt / mass;
+        }
         self.body.implicit_forces(
             &self.predicted,
             dt,
-            mass / (dt * dt),
+            &self.mass_over_dt2,
             &mut self.forces,
             &mut self.slip,
         );
@@ -87,13 +99,14 @@ impl SliceSim {
         {
             *x += dt * *v + *slip;
         }
-        self.body.relax_unresolved(&self.forces, dt * dt / mass);
-        if self.mirror_symmetry {
+        self.body
+            .relax_unresolved(&self.forces, &self.dt2_over_mass);
+        if self.mirror_symmetry || depth.rings() {
             self.body.symmetrise(self.fluid.axis());
         }
         self.body.keep_tentacles_outside();
         let bell = self.body.bell_points();
-        let mirror = self.mirror_symmetry.then(|| self.fluid.axis());
+        let mirror = (self.mirror_symmetry || depth.rings()).then(|| self.fluid.axis());
         self.oral_arms.step(
             &self.fluid,
             bell[bell.len() / 2],

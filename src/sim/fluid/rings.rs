@@ -1,0 +1,177 @@
+//! The axisymmetric slice (r–z, no swirl): the same MAC grid, read as a meridian
+//! half-plane of a body of revolution mirrored about its axis.
+//!
+//! The axis runs through the centre of the middle column of cells (as the planar slice's
+//! mirror line does), so that column's cells are discs of radius h/2 and the others
+//! annuli; `u` faces sit at r = h/2, 3h/2, … The mirrored half stays in the grid, so
+//! advection traces across the axis by reading it (semi-Lagrangian tracing reflected at
+//! the axis), and everything that reads the planar slice reads this one. Each field is
+//! solved on the half from the left wall to the axis and mirrored (`u` odd, `v` even), so
+//! no radial velocity crosses the axis and the axial velocity is even there.
+//!
+//! What changes from the plane (`docs/numerics.md`, "The axisymmetric slice"):
+//! - volumes are weighted by r: a cell's divergence is `(r₊u₊ − r₋u₋)/(r·h) + ∂v/∂z`,
+//!   each ring's weight r its volume per radian over h² (the mirrored grid holds every
+//!   annulus twice and the axis disc once, so the disc weighs twice its h/8: h/4);
+//! - the pressure equation is the same r-weighted operator, solved exactly
+//!   ([`RingPoissonSolver`]);
+//! - viscosity carries the hoop term: `∇²u − u/r² = ∂/∂r((1/r)∂(ru)/∂r) + ∂²u/∂z²`, the
+//!   radial gradient of the same r-weighted divergence, exact for solid-body expansion
+//!   u ∝ r; `v` diffuses by the r-weighted Laplacian;
+//! - a point of the bell is a ring: its force (per radian) spreads onto each face over the
+//!   face's volume per radian `r·h²`, so the total force is exact and spreading is the
+//!   adjoint of interpolation in the r-weighted inner product.
+
+use super::Fluid;
+use super::symmetry::mirror;
+use crate::sim::pressure::RingPoissonSolver;
+
+/// The radii of an axisymmetric slice's faces and cells, and its pressure solve.
+#[derive(Clone)]
+pub(crate) struct Rings {
+    /// |x − axis| of each column of `u` faces, m (`n + 1`).
+    pub(crate) face: Vec<f32>,
+    /// |x − axis| of each column of cells, m (`n`); the axis column's h/4, the disc's
+    /// area over its circumference: a cell's volume per radian is `cell · h²`.
+    pub(crate) cell: Vec<f32>,
+    /// Columns solved: from the left wall to the axis column, `n/2 + 1`.
+    pub(crate) solved: usize,
+    solver: RingPoissonSolver,
+}
+
+/// Largest `ν·dt/h²` of one explicit sweep of the r–z viscous operator: its stiffest mode,
+/// the first `u` face off the axis (hoop term included), is about 13/h², so 0.1 keeps a
+/// sweep stable where the plane's 0.2 would not.
+pub(crate) const RINGS_SWEEP_LIMIT: f32 = 0.1;
+
+impl Rings {
+    /// The radii for `n` cells of size `h` about the centre of column `n/2`.
+    pub(crate) fn new(n: usize, h: f32) -> Self {
+        let c = n / 2;
+        let face = (0..=n)
+            .map(|i| (i as f32 - c as f32 - 0.5).abs() * h)
+            .collect();
+        let cell = (0..n)
+            .map(|i| {
+                if i == c {
+                    0.25 * h
+                } else {
+                    (i as f32 - c as f32).abs() * h
+                }
+            })
+            .collect();
+        Self {
+            face,
+            cell,
+            solved: c + 1,
+            solver: RingPoissonSolver::new(c + 1, n, h),
+        }
+    }
+
+    /// Heap bytes.
+    pub(crate) fn bytes(&self) -> usize {
+        (self.face.len() + self.cell.len()) * 4 + self.solver.bytes()
+    }
+}
+
+impl Fluid {
+    /// The rings, if this slice is axisymmetric.
+    pub(crate) fn rings(&self) -> Option<&Rings> {
+        self.rings.as_deref()
+    }
+
+    /// The r-weighted divergence of cell `(i, j)`, 1/s.
+    pub(super) fn ring_divergence(&self, rings: &Rings, i: usize, j: usize) -> f32 {
+        let (n, h) = (self.n, self.h);
+        let (u, r) = (&self.u[j * (n + 1)..][..n + 1], &rings.face);
+        let radial = (r[i + 1] * u[i + 1] - r[i] * u[i]) / (rings.cell[i] * h);
+        radial + (self.v[(j + 1) * n + i] - self.v[j * n + i]) / h
+    }
+
+    /// The r–z projection: the r-weighted divergence of the solved half, the exact solve,
+    /// its gradient subtracted, the half mirrored.
+    pub(super) fn project_rings(&mut self) {
+        let Some(rings) = self.rings.take() else {
+            return;
+        };
+        let (n, h, c) = (self.n, self.h, rings.solved - 1);
+        // φ row k is the ring k cells out from the axis: column c − k.
+        for j in 0..n {
+            for i in 0..=c {
+                self.phi[(c - i) * n + j] = self.ring_divergence(&rings, i, j);
+            }
+        }
+        let mut rings = rings;
+        rings.solver.solve(&mut self.phi);
+        let phi = |i: usize, j: usize| self.phi[(c - i) * n + j];
+        for j in 0..n {
+            let u = &mut self.u[j * (n + 1)..][..n + 1];
+            for (i, u) in u.iter_mut().enumerate().take(c + 1).skip(1) {
+                *u -= (phi(i, j) - phi(i - 1, j)) / h;
+            }
+        }
+        for j in 1..n {
+            let v = &mut self.v[j * n..][..n];
+            for (i, v) in v.iter_mut().enumerate().take(c + 1) {
+                *v -= (phi(i, j) - phi(i, j - 1)) / h;
+            }
+        }
+        // The open wake end: φ = 0 on the face; the inflow keeps the stream.
+        for (i, v) in self.v[..n].iter_mut().enumerate().take(c + 1) {
+            *v -= 2.0 * phi(i, 0) / h;
+        }
+        mirror(&mut self.u, &mut self.v, None, None, n);
+        self.rings = Some(rings);
+    }
+
+    /// One explicit sweep of the r–z viscous operator, `a = ν·dt/h²`, on the solved half
+    /// (then mirrored): `u` by the radial gradient of its r-weighted divergence (the hoop
+    /// term included), `v` by the r-weighted Laplacian; free slip at the outer wall,
+    /// zero gradient at the open ends, as in the plane.
+    pub(super) fn ring_viscosity_sweep(&mut self, rings: &Rings, a: f32) {
+        let (n, c) = (self.n, rings.solved - 1);
+        let (r, cell) = (&rings.face, &rings.cell);
+        for j in 0..n {
+            let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n - 1));
+            let row = |j: usize| &self.u[j * (n + 1)..][..n + 1];
+            let (below, here, above) = (row(jm), row(j), row(jp));
+            // (1/r)·∂(r u)/∂r of cell `i`, times h.
+            let expansion = |i: usize| (r[i + 1] * here[i + 1] - r[i] * here[i]) / cell[i];
+            let out = &mut self.scratch_u[j * (n + 1)..][..n + 1];
+            out[0] = here[0];
+            let mut left = expansion(0);
+            for i in 1..=c {
+                let right = expansion(i);
+                let radial = right - left;
+                let axial = below[i] + above[i] - 2.0 * here[i];
+                out[i] = here[i] + a * (radial + axial);
+                left = right;
+            }
+        }
+        for j in 0..=n {
+            let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n));
+            let row = |j: usize| &self.v[j * n..][..n];
+            let (below, here, above) = (row(jm), row(j), row(jp));
+            let out = &mut self.scratch_v[j * n..][..n];
+            for i in 0..=c {
+                let inner = if i == 0 { 0.0 } else { here[i] - here[i - 1] };
+                let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) / cell[i];
+                let axial = below[i] + above[i] - 2.0 * here[i];
+                out[i] = here[i] + a * (radial + axial);
+            }
+        }
+        mirror(&mut self.scratch_u, &mut self.scratch_v, None, None, n);
+        std::mem::swap(&mut self.u, &mut self.scratch_u);
+        std::mem::swap(&mut self.v, &mut self.scratch_v);
+        self.enforce_walls();
+    }
+
+    /// max |div u| over the solved half of an axisymmetric slice, 1/s.
+    pub(super) fn ring_divergence_max(&self, rings: &Rings) -> f32 {
+        let n = self.n;
+        (0..n)
+            .flat_map(|j| (0..rings.solved).map(move |i| (i, j)))
+            .map(|(i, j)| self.ring_divergence(rings, i, j).abs())
+            .fold(0.0, f32::max)
+    }
+}
