@@ -7,8 +7,46 @@
 mod common;
 
 use bevy_jellyfish::sim::inspect::{Outline, contains};
-use bevy_jellyfish::{SliceSim, Species};
+use bevy_jellyfish::{SliceGeometry, SliceSim, Species};
 use glam::Vec2;
+
+/// The shipped species in `geometry`.
+fn shipped(geometry: SliceGeometry) -> Vec<Species> {
+    common::shipped_species()
+        .into_iter()
+        .map(|s| Species {
+            slice_geometry: geometry,
+            ..s
+        })
+        .collect()
+}
+
+/// The default moon jelly in `geometry`.
+fn aurelia(geometry: SliceGeometry) -> Species {
+    Species {
+        slice_geometry: geometry,
+        ..Species::aurelia()
+    }
+}
+
+/// Runs a check once per slice geometry, as `name::planar` and `name::axisymmetric`.
+macro_rules! in_both_geometries {
+    ($(#[$attr:meta])* fn $name:ident) => {
+        mod $name {
+            use super::*;
+            #[test]
+            $(#[$attr])*
+            fn planar() {
+                super::$name(SliceGeometry::Planar)
+            }
+            #[test]
+            $(#[$attr])*
+            fn axisymmetric() {
+                super::$name(SliceGeometry::Axisymmetric)
+            }
+        }
+    };
+}
 
 fn run_cycles(sim: &mut SliceSim, cycles: f32) {
     let end = sim.time() + cycles / sim.species().contraction_frequency;
@@ -37,9 +75,9 @@ fn state_bits(sim: &SliceSim) -> (Vec<u32>, Vec<u32>, u32) {
     (bell, fluid, sim.swim_distance().to_bits())
 }
 
-#[test]
-fn swims_apex_first() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn swims_apex_first);
+fn swims_apex_first(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     let start = sim.bell_centroid_world();
     run_cycles(&mut sim, 4.0);
     let moved = sim.bell_centroid_world() - start;
@@ -55,9 +93,9 @@ fn swims_apex_first() {
     assert_eq!(sim.recoveries(), 0);
 }
 
-#[test]
-fn stays_incompressible() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn stays_incompressible);
+fn stays_incompressible(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     for _ in 0..60 {
         sim.advance(1.0 / 30.0);
         let h = sim.fluid().h;
@@ -71,11 +109,11 @@ fn stays_incompressible() {
     assert!(sim.fluid_speed_max() > 1e-3, "the bell stirs the water");
 }
 
-#[test]
-fn invalid_species_is_an_error_naming_the_field() {
+in_both_geometries!(fn invalid_species_is_an_error_naming_the_field);
+fn invalid_species_is_an_error_naming_the_field(geometry: SliceGeometry) {
     let bad = Species {
         diameter: -0.04,
-        ..Species::aurelia()
+        ..aurelia(geometry)
     };
     let err = SliceSim::new(&bad)
         .err()
@@ -83,7 +121,7 @@ fn invalid_species_is_an_error_naming_the_field() {
     assert_eq!(err.field(), Some("diameter"));
     let bad = Species {
         contraction_frequency: f32::NAN,
-        ..Species::aurelia()
+        ..aurelia(geometry)
     };
     assert_eq!(
         SliceSim::new(&bad).err().unwrap().field(),
@@ -91,9 +129,9 @@ fn invalid_species_is_an_error_naming_the_field() {
     );
 }
 
-#[test]
-fn meaningless_time_steps_do_nothing() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn meaningless_time_steps_do_nothing);
+fn meaningless_time_steps_do_nothing(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     for dt in [0.0, -1.0, f32::NAN, f32::INFINITY] {
         sim.advance(dt);
     }
@@ -102,9 +140,9 @@ fn meaningless_time_steps_do_nothing() {
     assert!(sim.bell_points().iter().all(|p| p.is_finite()));
 }
 
-#[test]
-fn a_long_frame_takes_fixed_steps_of_the_species() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn a_long_frame_takes_fixed_steps_of_the_species);
+fn a_long_frame_takes_fixed_steps_of_the_species(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     let step = SliceSim::step_length(sim.species());
     sim.advance(0.5);
     assert_eq!(sim.last_substeps(), (0.5 / step).floor() as usize);
@@ -117,9 +155,9 @@ fn a_long_frame_takes_fixed_steps_of_the_species() {
     assert!(sim.bell_points().iter().all(|p| p.is_finite()));
 }
 
-#[test]
-fn any_binary_split_of_the_same_time_gives_the_same_state() {
-    let species = Species::aurelia();
+in_both_geometries!(fn any_binary_split_of_the_same_time_gives_the_same_state);
+fn any_binary_split_of_the_same_time_gives_the_same_state(geometry: SliceGeometry) {
+    let species = aurelia(geometry);
     let run = |parts: &[f32], repeat: usize| {
         let mut sim = SliceSim::new(&species).unwrap();
         for _ in 0..repeat {
@@ -147,9 +185,9 @@ fn any_binary_split_of_the_same_time_gives_the_same_state() {
     assert!(a.swim_distance() > 0.0);
 }
 
-#[test]
-fn thirty_sixty_and_144_hz_frames_agree() {
-    let species = Species::aurelia();
+in_both_geometries!(fn thirty_sixty_and_144_hz_frames_agree);
+fn thirty_sixty_and_144_hz_frames_agree(geometry: SliceGeometry) {
+    let species = aurelia(geometry);
     let swim = |hz: f32| {
         let mut sim = SliceSim::new(&species).unwrap();
         let frames = (24.0 * hz).round() as usize;
@@ -168,9 +206,9 @@ fn thirty_sixty_and_144_hz_frames_agree() {
     assert!(a > 2.0 * species.diameter, "swam {a} m in 24 s");
 }
 
-#[test]
-fn the_box_follows_the_bell_without_jumps() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn the_box_follows_the_bell_without_jumps);
+fn the_box_follows_the_bell_without_jumps(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     let start = sim.bell_centroid_world();
     let home = sim.bell_points().iter().sum::<Vec2>() / sim.bell_points().len() as f32;
     let mut previous = sim.swim_distance();
@@ -197,12 +235,12 @@ fn the_box_follows_the_bell_without_jumps() {
     assert!(sim.frame_velocity().y > 0.0, "the box moves apex-first");
 }
 
-#[test]
-fn stays_mirror_symmetric_about_a_cell_centre() {
+in_both_geometries!(fn stays_mirror_symmetric_about_a_cell_centre);
+fn stays_mirror_symmetric_about_a_cell_centre(geometry: SliceGeometry) {
     for grid in [60, 61] {
         let species = Species {
             grid_resolution: grid,
-            ..Species::aurelia()
+            ..aurelia(geometry)
         };
         let mut sim = SliceSim::new(&species).unwrap();
         run_cycles(&mut sim, 1.5);
@@ -220,9 +258,9 @@ fn stays_mirror_symmetric_about_a_cell_centre() {
     }
 }
 
-#[test]
-fn a_blow_up_is_detected_and_recovered_where_the_bell_was() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn a_blow_up_is_detected_and_recovered_where_the_bell_was);
+fn a_blow_up_is_detected_and_recovered_where_the_bell_was(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     run_cycles(&mut sim, 2.5);
     let (distance, world) = (sim.swim_distance(), sim.bell_centroid_world());
     sim.poison_for_tests();
@@ -241,9 +279,9 @@ fn a_blow_up_is_detected_and_recovered_where_the_bell_was() {
     assert!(sim.bell_points().iter().all(|p| p.is_finite()));
 }
 
-#[test]
-fn a_crossed_outline_is_crumpled_and_recovered() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn a_crossed_outline_is_crumpled_and_recovered);
+fn a_crossed_outline_is_crumpled_and_recovered(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     run_cycles(&mut sim, 1.0);
     assert!(!sim.outline().crumpled());
     sim.fold_for_tests();
@@ -254,10 +292,10 @@ fn a_crossed_outline_is_crumpled_and_recovered() {
     assert!(!sim.outline().crumpled());
 }
 
-#[test]
-fn same_input_same_result() {
-    let mut a = SliceSim::new(&Species::aurelia()).unwrap();
-    let mut b = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn same_input_same_result);
+fn same_input_same_result(geometry: SliceGeometry) {
+    let mut a = SliceSim::new(&aurelia(geometry)).unwrap();
+    let mut b = SliceSim::new(&aurelia(geometry)).unwrap();
     for _ in 0..40 {
         a.advance(1.0 / 60.0);
         b.advance(1.0 / 60.0);
@@ -265,9 +303,9 @@ fn same_input_same_result() {
     assert_eq!(state_bits(&a), state_bits(&b));
 }
 
-#[test]
-fn muscles_contract_the_bell_towards_the_ratio() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn muscles_contract_the_bell_towards_the_ratio);
+fn muscles_contract_the_bell_towards_the_ratio(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     let width = |sim: &SliceSim| {
         let b = sim.bell_points();
         (b[b.len() - 1] - b[0]).length() / sim.species().diameter
@@ -283,9 +321,9 @@ fn muscles_contract_the_bell_towards_the_ratio() {
     );
 }
 
-#[test]
-fn tentacles_stay_outside_the_bell() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn tentacles_stay_outside_the_bell);
+fn tentacles_stay_outside_the_bell(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     for frame in 0..(4.0 * sim.species().period() * 30.0) as usize {
         sim.advance(1.0 / 30.0);
         let view = sim.view();
@@ -300,12 +338,12 @@ fn tentacles_stay_outside_the_bell() {
     }
 }
 
-#[test]
-fn species_edits_reach_a_living_slice() {
-    let mut sim = SliceSim::new(&Species::aurelia()).unwrap();
+in_both_geometries!(fn species_edits_reach_a_living_slice);
+fn species_edits_reach_a_living_slice(geometry: SliceGeometry) {
+    let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();
     run_cycles(&mut sim, 0.5);
     let (phase, d) = (sim.phase(), sim.swim_distance());
-    let mut faster = Species::aurelia();
+    let mut faster = aurelia(geometry);
     faster.contraction_frequency = 1.4;
     sim.set_species(&faster).unwrap();
     assert_eq!(sim.species().contraction_frequency, 1.4);
@@ -368,17 +406,12 @@ fn spread(v: &[f32]) -> f32 {
     (max - min) / (v.iter().sum::<f32>() / v.len() as f32)
 }
 
-fn shipped() -> Vec<Species> {
-    common::shipped_species()
-}
-
-#[test]
-#[ignore = "long: 2 × 40 strokes"]
-fn the_default_swims_like_aurelia_and_staggering_pays() {
-    let (s, s_cv) = mean_and_cv(&per_cycle(&Species::aurelia(), 20, 40));
+in_both_geometries!(#[ignore = "long: 2 × 40 strokes"] fn the_default_swims_like_aurelia_and_staggering_pays);
+fn the_default_swims_like_aurelia_and_staggering_pays(geometry: SliceGeometry) {
+    let (s, s_cv) = mean_and_cv(&per_cycle(&aurelia(geometry), 20, 40));
     let unison = Species {
         expansion_stagger: 0.0,
-        ..Species::aurelia()
+        ..aurelia(geometry)
     };
     let (u, _) = mean_and_cv(&per_cycle(&unison, 20, 40));
     println!(
@@ -396,49 +429,54 @@ fn the_default_swims_like_aurelia_and_staggering_pays() {
     assert!(s >= 1.2 * u, "staggered {s} vs unison {u}");
 }
 
-#[test]
-#[ignore = "long: 4 grids × 30 strokes"]
-fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell() {
-    let base = Species::aurelia();
-    let runs: Vec<f32> = (0..4)
-        .map(|k| {
+in_both_geometries!(#[ignore = "long: every species, 4 grids × 30 strokes"] fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell);
+fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell(geometry: SliceGeometry) {
+    for base in shipped(geometry) {
+        let runs: Vec<f32> = (0..4)
+            .map(|k| {
+                let s = Species {
+                    grid_resolution: base.grid_resolution + k,
+                    ..base.clone()
+                };
+                mean_and_cv(&per_cycle(&s, 10, 30)).0
+            })
+            .collect();
+        println!(
+            "{}: grids G..G+3, diameters per cycle (cycles 10-30): {runs:?}, spread {:.1}%",
+            base.name,
+            100.0 * spread(&runs)
+        );
+        assert!(spread(&runs) <= 0.05, "{}: {runs:?}", base.name);
+    }
+}
+
+in_both_geometries!(#[ignore = "long: every species, grids G and 1.5·G, 30 strokes"] fn the_stroke_converges_with_the_grid);
+fn the_stroke_converges_with_the_grid(geometry: SliceGeometry) {
+    for base in shipped(geometry) {
+        let at = |grid: u32| {
             let s = Species {
-                grid_resolution: base.grid_resolution + k,
+                grid_resolution: grid,
                 ..base.clone()
             };
             mean_and_cv(&per_cycle(&s, 10, 30)).0
-        })
-        .collect();
-    println!(
-        "grids G..G+3, diameters per cycle (cycles 10-30): {runs:?}, spread {:.1}%",
-        100.0 * spread(&runs)
-    );
-    assert!(spread(&runs) <= 0.05, "{runs:?}");
-}
-
-#[test]
-#[ignore = "long: grids 60 and 90, 30 strokes"]
-fn the_stroke_converges_with_the_grid() {
-    let base = Species::aurelia();
-    let at = |grid: u32| {
-        let s = Species {
-            grid_resolution: grid,
-            ..base.clone()
         };
-        mean_and_cv(&per_cycle(&s, 10, 30)).0
-    };
-    let (coarse, fine) = (at(base.grid_resolution), at(base.grid_resolution * 3 / 2));
-    println!(
-        "grid G: {coarse:.3}, 1.5·G: {fine:.3} diameters per cycle ({:+.1}%)",
-        100.0 * (fine / coarse - 1.0)
-    );
-    assert!((fine / coarse - 1.0).abs() <= 0.15, "{coarse} vs {fine}");
+        let (coarse, fine) = (at(base.grid_resolution), at(base.grid_resolution * 3 / 2));
+        println!(
+            "{}: grid G: {coarse:.3}, 1.5·G: {fine:.3} diameters per cycle ({:+.1}%)",
+            base.name,
+            100.0 * (fine / coarse - 1.0)
+        );
+        assert!(
+            (fine / coarse - 1.0).abs() <= 0.15,
+            "{}: {coarse} vs {fine}",
+            base.name
+        );
+    }
 }
 
-#[test]
-#[ignore = "long: 20 strokes at Re 1 and at sea water's"]
-fn a_stroke_hardly_swims_where_viscosity_rules() {
-    let base = Species::aurelia();
+in_both_geometries!(#[ignore = "long: 20 strokes at Re 1 and at sea water's"] fn a_stroke_hardly_swims_where_viscosity_rules);
+fn a_stroke_hardly_swims_where_viscosity_rules(geometry: SliceGeometry) {
+    let base = aurelia(geometry);
     // Re = ρ·f·D²/μ (IB2d's definition, `docs/physics.md`): about 880 for the default in sea water.
     let viscosity = base.density * base.contraction_frequency * base.diameter * base.diameter;
     let syrup = Species {
@@ -454,10 +492,9 @@ fn a_stroke_hardly_swims_where_viscosity_rules() {
     );
 }
 
-#[test]
-#[ignore = "long: every species with and without tentacles, 40 strokes"]
-fn tentacles_slow_the_bell_down() {
-    for s in shipped() {
+in_both_geometries!(#[ignore = "long: every species with and without tentacles, 40 strokes"] fn tentacles_slow_the_bell_down);
+fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
+    for s in shipped(geometry) {
         let (with, _) = mean_and_cv(&per_cycle(&s, 20, 40));
         let bare = Species {
             tentacle_length: 0.0,
@@ -504,11 +541,10 @@ fn whole_bell(species: &Species, cycles: u64, hz: f32) -> (u64, u64, f32, u32) {
     (crumpled, samples, drift, sim.recoveries())
 }
 
-#[test]
-#[ignore = "long: 1000 strokes of every species at three frame rates, 2000 of the default"]
-fn bells_stay_whole_for_a_thousand_strokes() {
-    let mut runs: Vec<(Species, u64)> = shipped().into_iter().map(|s| (s, 1000)).collect();
-    runs.push((Species::aurelia(), 2000));
+in_both_geometries!(#[ignore = "long: 1000 strokes of every species at three frame rates, 2000 of the default"] fn bells_stay_whole_for_a_thousand_strokes);
+fn bells_stay_whole_for_a_thousand_strokes(geometry: SliceGeometry) {
+    let mut runs: Vec<(Species, u64)> = shipped(geometry).into_iter().map(|s| (s, 1000)).collect();
+    runs.push((aurelia(geometry), 2000));
     for (species, cycles) in runs {
         for hz in [30.0, 60.0, 144.0] {
             let (crumpled, samples, drift, recoveries) = whole_bell(&species, cycles, hz);
@@ -548,9 +584,8 @@ fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
     })
 }
 
-#[test]
-#[ignore = "long: 2 × 15 runs of 20 s"]
-fn the_sweep_peaks_at_the_bells_resonance() {
+in_both_geometries!(#[ignore = "long: 2 × 15 runs of 20 s"] fn the_sweep_peaks_at_the_bells_resonance);
+fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
     let frequencies: Vec<f32> = (2..=16).map(|k| k as f32 / 10.0).collect();
     let peak = |d: &[f32]| {
         let (i, best) = d
@@ -559,7 +594,7 @@ fn the_sweep_peaks_at_the_bells_resonance() {
             .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
         (frequencies[i], best)
     };
-    let base = Species::aurelia();
+    let base = aurelia(geometry);
     let d = sweep(&base, &frequencies);
     let (f, best) = peak(&d);
     let (low, high) = (d[0], d[d.len() - 1]);

@@ -209,15 +209,32 @@ impl Body {
             return;
         }
         let drag = &self.tentacle_drag;
-        self.tentacle_solver
-            .solve_each(&tentacles, |i| drag[i] / dt, damping, &mut self.scratch);
+        // In r–z the fringe's drag per radian is the same at any radius while the water a
+        // point can push shrinks with its ring: no point slips against more drag than the
+        // water it drags along could take in one step (it then moves with the water, as a
+        // tentacle in syrup does), or the margin and its fringe ring against each other.
+        let rings = self.depth.rings();
+        let diagonal = |drag: f32, i: usize| {
+            let d = drag / dt;
+            if rings { d.min(mass_over_dt2[i]) } else { d }
+        };
+        self.tentacle_solver.solve_each(
+            &tentacles,
+            |i| diagonal(drag[i], i),
+            damping,
+            &mut self.scratch,
+        );
         let margins = [self.bell.start, self.bell.end - 1];
         for (side, range) in self.tentacles.clone().into_iter().enumerate() {
             let mut pull = Vec2::ZERO;
             for i in range {
                 let f = self.scratch[i];
                 forces[i] = f;
-                slip[i] = f * dt / self.tentacle_drag[i];
+                slip[i] = if rings {
+                    f / diagonal(self.tentacle_drag[i], i)
+                } else {
+                    f * dt / self.tentacle_drag[i]
+                };
                 pull += f;
                 // Next step's drag at this step's relative speed.
                 let speed = slip[i].length() / dt;

@@ -26,6 +26,8 @@ mod frame;
 mod immersed;
 mod measure;
 mod projection;
+#[cfg(test)]
+mod ring_tests;
 mod rings;
 mod sampling;
 mod symmetry;

@@ -36,6 +36,9 @@ pub(crate) struct Rings {
     pub(crate) cell: Vec<f32>,
     /// Columns solved: from the left wall to the axis column, `n/2 + 1`.
     pub(crate) solved: usize,
+    /// A no-slip outer wall for the viscous term (a pipe: test set-ups only; the slice's
+    /// wall is free-slip, as the plane's are).
+    pub(crate) no_slip_wall: bool,
     solver: RingPoissonSolver,
 }
 
@@ -64,6 +67,7 @@ impl Rings {
             face,
             cell,
             solved: c + 1,
+            no_slip_wall: false,
             solver: RingPoissonSolver::new(c + 1, n, h),
         }
     }
@@ -154,7 +158,11 @@ impl Fluid {
             let (below, here, above) = (row(jm), row(j), row(jp));
             let out = &mut self.scratch_v[j * n..][..n];
             for i in 0..=c {
-                let inner = if i == 0 { 0.0 } else { here[i] - here[i - 1] };
+                let inner = match i {
+                    0 if rings.no_slip_wall => 2.0 * here[0],
+                    0 => 0.0,
+                    _ => here[i] - here[i - 1],
+                };
                 let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) / cell[i];
                 let axial = below[i] + above[i] - 2.0 * here[i];
                 out[i] = here[i] + a * (radial + axial);
