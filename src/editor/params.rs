@@ -3,7 +3,7 @@
 //! and cannot leave it; limits that join fields (proportions, budgets) are validation's,
 //! shown as an error above the sliders.
 
-use crate::species::{Advection, GonadShape, Kernel, Species, limits};
+use crate::species::{Advection, GonadShape, Kernel, SliceGeometry, Species, limits};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -173,6 +173,7 @@ pub const SECTIONS: &[Section] = &[
 /// Fields edited by a widget other than a slider (see [`species_controls`]).
 pub const OTHER_FIELDS: &[&str] = &[
     "name",
+    "slice_geometry",
     "advection",
     "kernel",
     "structural_abs",
@@ -239,6 +240,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 ui.end_row();
                             }
                             "Water" => {
+                                changed |= slice_geometry(ui, &mut species.slice_geometry);
                                 changed |= advection(ui, &mut species.advection);
                                 changed |= kernel(ui, &mut species.kernel);
                             }
@@ -259,6 +261,24 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
             });
     }
     changed
+}
+
+fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
+    ui.label("slice geometry").on_hover_text(
+        "slice_geometry: Planar is the paper's slice (a vortex-pair wake); Axisymmetric is a \
+         body of revolution (every point a ring, a vortex-ring wake); changing it rebuilds \
+         the slice at rest",
+    );
+    let before = *geometry;
+    egui::ComboBox::from_id_salt("slice_geometry")
+        .selected_text(format!("{geometry:?}"))
+        .show_ui(ui, |ui| {
+            for g in SliceGeometry::ALL {
+                ui.selectable_value(geometry, g, format!("{g:?}"));
+            }
+        });
+    ui.end_row();
+    *geometry != before
 }
 
 fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {

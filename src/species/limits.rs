@@ -7,7 +7,7 @@
 //! range could still exceed — the slice's cost per simulated second and the mesh's vertex
 //! count. Those are checked after the table, and the error names the field that tips it.
 
-use super::{Species, SpeciesError};
+use super::{SliceGeometry, Species, SpeciesError};
 
 /// The range one field may take.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -288,10 +288,16 @@ pub fn simulation_cost(s: &Species) -> f64 {
         0.5 * std::f64::consts::PI * (3.0 * (a + b) - ((3.0 * a + b) * (a + 3.0 * b)).sqrt());
     let points = (half_perimeter + 2.0 * s.tentacle_length as f64) / spacing;
     let steps = s.contraction_frequency as f64 * s.steps_per_cycle() as f64;
-    // Explicit viscosity: one sweep per 0.2 of ν·dt/h², up to the fluid's cap.
+    // Explicit viscosity: one sweep per 0.2 of ν·dt/h², up to the fluid's cap; r–z sweeps
+    // are half as long (its hoop term is stiffer), twice as many, over the half of the
+    // grid it solves.
     let h = s.cell_size() as f64;
     let alpha = s.kinematic_viscosity() as f64 * s.step_length() as f64 / (h * h);
-    let sweeps = (alpha / 0.2).ceil().clamp(1.0, 32.0);
+    let (sweep, most, share) = match s.slice_geometry {
+        SliceGeometry::Planar => (0.2, 32.0, 1.0),
+        SliceGeometry::Axisymmetric => (0.1, 64.0, 0.5),
+    };
+    let sweeps = (alpha / sweep).ceil().clamp(1.0, most) * share;
     steps * ((COST_PER_CELL + COST_PER_CELL_SWEEP * sweeps) * cells + COST_PER_POINT * points)
 }
 

@@ -75,7 +75,7 @@ impl Body {
         let outline = rest_outline(species, h);
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();
-        let depth = Depth::new(species.slice_geometry, origin.x, h);
+        let depth = Depth::new(species, origin.x, h);
         let mut points: Vec<Vec2> = outline.iter().map(|p| *p + origin).collect();
         let mut springs = subumbrellar_springs(species, &points, depth);
         let mut hinges = mesoglea_hinges(species, &points, spacing, depth);
