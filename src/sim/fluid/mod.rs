@@ -16,7 +16,9 @@
 //! - `boundaries`: the side walls, the inflow, the open wake end and its absorbing layer;
 //! - `frame`: the co-moving box (Galilean changes of frame, whole-cell shifts);
 //! - `symmetry`: the mirror about the bell's axis;
-//! - `measure`: divergence, speeds, energy.
+//! - `measure`: divergence, speeds, energy;
+//! - `walls`: the channel, or a closed box, a test set-up for checking the fluid on its
+//!   own.
 
 mod advection;
 mod boundaries;
@@ -29,8 +31,10 @@ mod sampling;
 mod symmetry;
 #[cfg(test)]
 mod tests;
+mod walls;
 
 pub(crate) use crate::species::{Advection, Kernel};
+pub(crate) use walls::Walls;
 
 use super::pressure::PoissonSolver;
 
@@ -67,6 +71,8 @@ pub struct Fluid {
     /// Vertical velocity of still water relative to the frame, m/s (minus the frame's
     /// velocity): what enters at the top, and what the absorbing layer relaxes towards.
     pub(crate) stream: f32,
+    /// The walls around the grid: the channel, or a closed box in tests.
+    walls: Walls,
     /// Absorbing layer at the bottom (wake) end: damping rate (1/s) per face.
     sponge_u: Vec<f32>,
     sponge_v: Vec<f32>,
@@ -108,6 +114,7 @@ impl Fluid {
             mirror: false,
             kernel_stretch: 1.0,
             stream: 0.0,
+            walls: Walls::Channel,
             sponge_u: vec![0.0; faces],
             sponge_v: vec![0.0; faces],
             scratch_u: vec![0.0; faces],
