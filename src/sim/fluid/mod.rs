@@ -17,8 +17,8 @@
 //! - `frame`: the co-moving box (Galilean changes of frame, whole-cell shifts);
 //! - `symmetry`: the mirror about the bell's axis;
 //! - `measure`: divergence, speeds, energy;
-//! - `walls`: the channel, or a closed box, a test set-up for checking the fluid on its
-//!   own.
+//! - `walls`: the channel, or a closed box for the textbook flows (`textbook`) that
+//!   check the fluid on its own.
 
 mod advection;
 mod boundaries;
@@ -31,6 +31,8 @@ mod sampling;
 mod symmetry;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod textbook;
 mod walls;
 
 pub(crate) use crate::species::{Advection, Kernel};
