@@ -337,9 +337,9 @@ fn lid_driven_cavity_matches_ghia_ghia_shin() {
 /// are singular (the wall speed jumps there), which slows every scheme's convergence on
 /// this flow: measured 3.1–3.7-fold. The extrapolation of the three grids (by the
 /// measured ratio) must lie within 4% of Ghia's values (see
-/// `lid_driven_cavity_matches_ghia_ghia_shin`; measured 1.3–3.3%).
+/// `lid_driven_cavity_matches_ghia_ghia_shin`; measured 1.3–3.4%).
 #[test]
-#[ignore = "long: the cavity on grids 32, 64 and 128, twice (about 17 s in the test profile)"]
+#[ignore = "long: the cavity on grids 32, 64 and 128, twice (about 16 s)"]
 fn cavity_converges_with_the_grid() {
     for advection in [Advection::MacCormack, Advection::Cubic] {
         let grids = [32, 64, 128].map(|n| (n, cavity(n, advection, n as f32 / 512.0)));
