@@ -44,6 +44,9 @@ impl Fluid {
     /// Zero normal velocity on the side walls; still water (the stream) entering at the
     /// top. The bottom, where the wake leaves, is open.
     pub(super) fn enforce_walls(&mut self) {
+        if self.walls.is_closed() {
+            return self.enforce_box_walls();
+        }
         let n = self.n;
         for j in 0..n {
             self.u[j * (n + 1)] = 0.0;

@@ -1,7 +1,7 @@
 //! Viscosity: explicit Laplacian sweeps of the velocity, sub-stepped where one sweep
 //! would be unstable.
 
-use super::{Fluid, RINGS_SWEEP_LIMIT};
+use super::{Fluid, RINGS_SWEEP_LIMIT, Walls};
 
 /// Most explicit diffusion sweeps in one step (see [`Fluid::diffuse`]).
 pub(crate) const MAX_DIFFUSION_SWEEPS: usize = 32;
@@ -13,6 +13,9 @@ impl Fluid {
     /// resolve (`32 · 0.2 · h²/dt`; Re ≈ 0.3 for the default species, where nothing swims
     /// anyway), so a species as viscous as honey costs a bounded step instead of hanging.
     pub(crate) fn diffuse(&mut self, dt: f32) {
+        if let Walls::ClosedBox { no_slip: true, lid } = self.walls {
+            return self.diffuse_no_slip(dt, lid);
+        }
         let alpha = self.nu * dt / (self.h * self.h);
         if alpha.is_nan() || alpha <= 0.0 {
             return;

@@ -17,7 +17,9 @@
 //! - `frame`: the co-moving box (Galilean changes of frame, whole-cell shifts);
 //! - `symmetry`: the mirror about the bell's axis;
 //! - `rings`: the axisymmetric slice's r-weighted operators (see [`SliceGeometry`]);
-//! - `measure`: divergence, speeds, energy.
+//! - `measure`: divergence, speeds, energy;
+//! - `walls`: the channel, or a closed box for the textbook flows (`textbook`) that
+//!   check the fluid on its own.
 
 mod advection;
 mod boundaries;
@@ -33,9 +35,13 @@ mod sampling;
 mod symmetry;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod textbook;
+mod walls;
 
 pub(crate) use crate::species::{Advection, Kernel, SliceGeometry};
 pub(crate) use rings::{RINGS_SWEEP_LIMIT, Rings};
+pub(crate) use walls::Walls;
 
 use super::pressure::PoissonSolver;
 
@@ -72,6 +78,8 @@ pub struct Fluid {
     /// Vertical velocity of still water relative to the frame, m/s (minus the frame's
     /// velocity): what enters at the top, and what the absorbing layer relaxes towards.
     pub(crate) stream: f32,
+    /// The walls around the grid: the channel, or a closed box in tests.
+    walls: Walls,
     /// Absorbing layer at the bottom (wake) end: damping rate (1/s) per face.
     sponge_u: Vec<f32>,
     sponge_v: Vec<f32>,
@@ -120,6 +128,7 @@ impl Fluid {
             mirror: false,
             kernel_stretch: 1.0,
             stream: 0.0,
+            walls: Walls::Channel,
             sponge_u: vec![0.0; faces],
             sponge_v: vec![0.0; faces],
             scratch_u: vec![0.0; faces],

@@ -34,6 +34,10 @@ impl Fluid {
                 *v -= (p1 - p0) / h;
             }
         }
+        // A closed box (a test set-up) has no open end: ∂φ/∂y = 0 there too.
+        if self.walls.is_closed() {
+            return;
+        }
         // The open wake end: φ = 0 on the boundary face, so the ghost cell beyond is −φ.
         // The inflow face at the top keeps the stream (∂φ/∂y = 0 there).
         for (v, p) in self.v[..n].iter_mut().zip(&self.phi[..n]) {

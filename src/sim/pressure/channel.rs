@@ -71,7 +71,52 @@ fn factors(n: usize, h: f32) -> Arc<Factors> {
     )
 }
 
+/// The factors of a closed box (test set-ups only: see `fluid::Walls`): ∂φ/∂n = 0 on all
+/// four sides, the bottom face as the top. The constant mode (k = 0, constant along each
+/// row) is then singular, and is pinned ([`Factors::pin_last`]): the pressure is defined
+/// up to a constant, which its gradient does not see.
+fn closed_factors(n: usize, h: f32) -> Arc<Factors> {
+    type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
+    static FACTORS: OnceLock<Shared> = OnceLock::new();
+    shared(
+        FACTORS.get_or_init(Default::default),
+        (n, h.to_bits()),
+        || {
+            let (pi, h) = (std::f64::consts::PI, h as f64);
+            let off = 1.0 / (h * h);
+            let lambda: Vec<f64> = (0..n)
+                .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
+                .collect();
+            // Both ends: ghost cell φ (∂p/∂y = 0).
+            let diagonal: Vec<f64> = (0..n)
+                .map(|j| {
+                    if j == 0 || j == n - 1 {
+                        -off
+                    } else {
+                        -2.0 * off
+                    }
+                })
+                .collect();
+            let off = vec![off; n];
+            let mut factors = Factors::new(&off, &diagonal, &off, &lambda);
+            factors.pin_last(0);
+            Arc::new(factors)
+        },
+    )
+}
+
 impl PoissonSolver {
+    /// A solver for a closed `n × n` box of cells of size `h`: Neumann on all four sides
+    /// (see `closed_factors`), so [`PoissonSolver::solve`] returns the pressure up to a
+    /// constant (its row means' mode pinned to zero on the top row). For the test set-ups
+    /// of `fluid::Walls` only.
+    pub(crate) fn closed(n: usize, h: f32) -> Self {
+        Self {
+            factors: closed_factors(n, h),
+            ..Self::new(n, h)
+        }
+    }
+
     /// A solver for an `n × n` grid of cells of size `h`.
     pub(crate) fn new(n: usize, h: f32) -> Self {
         let across = plan(n);
@@ -132,6 +177,55 @@ mod tests {
             }
         }
         out
+    }
+
+    /// The closed box's Laplacian: Neumann (mirror ghost cells) on all four sides.
+    fn closed_laplacian(phi: &[f32], n: usize, h: f32) -> Vec<f32> {
+        let at = |i: usize, j: usize| phi[j * n + i] as f64;
+        let h = h as f64;
+        let mut out = vec![0.0; n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let c = at(i, j);
+                let left = if i > 0 { at(i - 1, j) } else { c };
+                let right = if i + 1 < n { at(i + 1, j) } else { c };
+                let below = if j > 0 { at(i, j - 1) } else { c };
+                let above = if j + 1 < n { at(i, j + 1) } else { c };
+                out[j * n + i] = ((left + right + below + above - 4.0 * c) / (h * h)) as f32;
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn inverts_the_closed_box_laplacian() {
+        // Pure Neumann: the solution is defined up to a constant, so both are compared
+        // with their means removed. The right-hand side (a Laplacian) sums to zero, as a
+        // closed box's divergence does.
+        for n in [16, 50, 60, 64, 100] {
+            let h = 0.004;
+            let exact: Vec<f32> = (0..n * n)
+                .map(|k| {
+                    let (i, j) = ((k % n) as f32, (k / n) as f32);
+                    let (x, y) = ((i + 0.5) / n as f32, (j + 0.5) / n as f32);
+                    (std::f32::consts::PI * x).cos() * (std::f32::consts::PI * y).cos()
+                        + 0.7 * (std::f32::consts::PI * y).cos()
+                        + 0.3 * (7.0 * x).sin() * (5.0 * y * y).sin()
+                        + 0.01 * (((k * 7919) % 101) as f32 / 101.0 - 0.5)
+                })
+                .collect();
+            let mut phi = closed_laplacian(&exact, n, h);
+            PoissonSolver::closed(n, h).solve(&mut phi);
+            let mean = |f: &[f32]| f.iter().map(|&x| x as f64).sum::<f64>() / f.len() as f64;
+            let (m_phi, m_exact) = (mean(&phi), mean(&exact));
+            let scale = exact.iter().fold(0.0f32, |m, r| m.max(r.abs()));
+            let err = phi.iter().zip(&exact).fold(0.0f64, |m, (a, b)| {
+                m.max(((*a as f64 - m_phi) - (*b as f64 - m_exact)).abs())
+            });
+            let rel = err / scale as f64;
+            assert!(rel < 1e-5, "n={n}: relative error {rel}");
+            assert!(phi.iter().all(|x| x.is_finite()), "n={n}: not finite");
+        }
     }
 
     #[test]

@@ -87,6 +87,16 @@ impl Factors {
             }
         }
     }
+
+    /// Pins `mode`, whose system is singular (a pure-Neumann operator's constant), by
+    /// replacing its last equation with `x = 0`: the last pivot is exactly zero there, so
+    /// forward elimination leaves `0·x = Σ b`, which holds whenever the right-hand side is
+    /// compatible (zero total divergence in a closed box), and every other row is solved
+    /// as before. What is lost is only the free constant of that mode.
+    pub(super) fn pin_last(&mut self, mode: usize) {
+        let rows = self.inverse_pivot.len() / self.modes;
+        self.inverse_pivot[(rows - 1) * self.modes + mode] = 0.0;
+    }
 }
 
 /// One value per key, built once and shared (plans and factors are costlier than a solve,
