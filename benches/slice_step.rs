@@ -3,6 +3,8 @@
 //!
 //! - `coupled_step/N`: one fixed step of the default species (fluid + body + coupling) at
 //!   grid N (60 is the default, ten cells per diameter; 100 the paper's grid);
+//! - `axisymmetric_step/N`: the same in the r–z slice (`SliceGeometry::Axisymmetric`), at
+//!   the same cells per diameter;
 //! - `stam_step/N`: the baseline, a plain Stam fluid step written straightforwardly
 //!   (collocated grid, semi-Lagrangian advection, 20 Gauss–Seidel sweeps);
 //! - and, printed after the criterion runs: µs per step and per simulated second at the
@@ -11,14 +13,15 @@
 //!
 //! `cargo bench --no-default-features --bench slice_step`
 
-use bevy_jellyfish::{SliceSim, Species};
+use bevy_jellyfish::{SliceGeometry, SliceSim, Species};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Instant;
 
-fn warmed_up(grid: u32) -> SliceSim {
+fn warmed_up(grid: u32, slice_geometry: SliceGeometry) -> SliceSim {
     let species = Species {
         grid_resolution: grid,
+        slice_geometry,
         ..Species::aurelia()
     };
     let mut sim = SliceSim::new(&species).expect("default species is valid");
@@ -28,16 +31,21 @@ fn warmed_up(grid: u32) -> SliceSim {
 }
 
 fn coupled_step(c: &mut Criterion) {
-    let mut group = c.benchmark_group("coupled_step");
-    for grid in [60, 90, 100] {
-        let mut sim = warmed_up(grid);
-        let dt = SliceSim::step_length(sim.species());
-        group.bench_with_input(BenchmarkId::from_parameter(grid), &grid, |b, _| {
-            // One fixed step's worth of time: exactly one step.
-            b.iter(|| sim.advance(black_box(dt)))
-        });
+    for (name, geometry) in [
+        ("coupled_step", SliceGeometry::Planar),
+        ("axisymmetric_step", SliceGeometry::Axisymmetric),
+    ] {
+        let mut group = c.benchmark_group(name);
+        for grid in [60, 90, 100] {
+            let mut sim = warmed_up(grid, geometry);
+            let dt = SliceSim::step_length(sim.species());
+            group.bench_with_input(BenchmarkId::from_parameter(grid), &grid, |b, _| {
+                // One fixed step's worth of time: exactly one step.
+                b.iter(|| sim.advance(black_box(dt)))
+            });
+        }
+        group.finish();
     }
-    group.finish();
 }
 
 fn stam_step(c: &mut Criterion) {
@@ -60,10 +68,17 @@ fn report(_: &mut Criterion) {
         grid_resolution: 100,
         ..Species::aurelia()
     };
+    let rings = |s: &Species| Species {
+        slice_geometry: SliceGeometry::Axisymmetric,
+        ..s.clone()
+    };
+    let (default_rings, fine_rings) = (rings(&default), rings(&fine));
     for (label, species) in [
         ("default, grid 60 over 6 D", default),
         ("paper's grid 100 over 10 D", paper),
         ("default box at grid 100", fine),
+        ("r-z, grid 60 over 6 D", default_rings),
+        ("r-z, default box at grid 100", fine_rings),
     ] {
         let grid = species.grid_resolution;
         let mut sim = SliceSim::new(&species).expect("valid species");

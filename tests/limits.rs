@@ -1,12 +1,13 @@
 //! The limits table, fuzzed: random species with every field at once, extremes included.
-//! Inside the limits a species runs — no panic, finite, its mesh within the vertex budget;
-//! outside, it is an error naming a field. The short run is part of `cargo test`; the long
+//! Either slice geometry, every advection scheme and kernel. Inside the limits a species
+//! runs — no panic, finite, its mesh within the vertex budget; outside, it is an error
+//! naming a field. The short run is part of `cargo test`; the long
 //! one also checks the time a second of 60 Hz frames takes:
 //! `cargo test --release --no-default-features --test limits -- --ignored --nocapture`.
 
 use bevy_jellyfish::shape::{JellyMesh, build_into};
 use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
-use bevy_jellyfish::species::{Advection, GonadShape, Kernel};
+use bevy_jellyfish::species::{Advection, GonadShape, Kernel, SliceGeometry};
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::{Duration, Instant};
 
@@ -136,6 +137,7 @@ fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
     }
     s.advection = Advection::ALL[(rng.next() % Advection::ALL.len() as u64) as usize];
     s.kernel = Kernel::ALL[(rng.next() % Kernel::ALL.len() as u64) as usize];
+    s.slice_geometry = SliceGeometry::ALL[(rng.next() % SliceGeometry::ALL.len() as u64) as usize];
     s.structural_abs = rng.next().is_multiple_of(2);
     s.gonad_shape = GonadShape::ALL[(rng.next() % GonadShape::ALL.len() as u64) as usize];
     s
