@@ -40,15 +40,14 @@ impl Coupling {
     /// planar slice, a radian of an axisymmetric one's rings) to the fluid's force
     /// density, over each face's volume per unit depth.
     pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
-        let (row_u, row_v) = (fluid.n + 1, fluid.n);
         let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
         let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
         for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
-            for (i, w) in su.iter() {
-                force_u[i] += w * f.x * scale_u[i % row_u];
+            for (i, column, w) in su.iter_columns() {
+                force_u[i] += w * f.x * scale_u[column];
             }
-            for (i, w) in sv.iter() {
-                force_v[i] += w * f.y * scale_v[i % row_v];
+            for (i, column, w) in sv.iter_columns() {
+                force_v[i] += w * f.y * scale_v[column];
             }
         }
     }

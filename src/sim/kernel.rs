@@ -37,6 +37,21 @@ pub(crate) struct Stencil {
 }
 
 impl Stencil {
+    /// `(face index, column, weight)` triples: the column is the face's index across, for
+    /// what varies across the grid only (an axisymmetric slice's radii).
+    pub(crate) fn iter_columns(&self) -> impl Iterator<Item = (usize, usize, f32)> + '_ {
+        let (x, y, row) = (&self.x, &self.y, self.row);
+        (0..y.len).flat_map(move |b| {
+            (0..x.len).map(move |a| {
+                (
+                    y.index[b] * row + x.index[a],
+                    x.index[a],
+                    x.weight[a] * y.weight[b],
+                )
+            })
+        })
+    }
+
     /// `(face index, weight)` pairs.
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
         let (x, y, row) = (&self.x, &self.y, self.row);

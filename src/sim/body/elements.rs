@@ -67,6 +67,21 @@ pub(crate) struct Muscle {
     pub(crate) stiffness: f32,
     /// 0 nearest the apex, 1 at the margin: where the staggered expansion is slowest.
     pub(crate) level: f32,
+    /// The share of the stiffness the contraction drives: 1 for a muscle of its own; less
+    /// for an r–z ring's muscle merged with the passive hoop it runs parallel to (one
+    /// element with the pair's stiffness and rest length, the same forces exactly).
+    pub(crate) drive: f32,
+}
+
+impl Muscle {
+    /// The rest length when the contraction function asks for `factor` of the relaxed.
+    pub(crate) fn rest_at(&self, factor: f32) -> f32 {
+        if self.drive == 1.0 {
+            self.relaxed * factor
+        } else {
+            self.relaxed * (1.0 - self.drive * (1.0 - factor))
+        }
+    }
 }
 
 /// Hinge length the default `angular_stiffness` refers to, m (grid 100: half a 4 mm cell).

@@ -100,6 +100,7 @@ pub(super) fn circumferential_muscles(
             rest: relaxed,
             stiffness: in_series / relaxed,
             level,
+            drive: 1.0,
         });
     }
     muscles
@@ -135,10 +136,11 @@ pub(super) fn ring_hoops(
         let ring = mesoglea_thickness(species, arc_fraction(i, m)) * spacing;
         let hoop = species.elastic_modulus * ring;
         let level = 1.0 - i as f32 / m as f32;
-        springs.push(spring(subumbrella, i, j, hoop));
         if level < 0.25 {
+            springs.push(spring(subumbrella, i, j, hoop));
             continue;
         }
+        // The muscle and the hoop in parallel, as one element.
         let fibre = species.muscle_modulus * species.muscle_cross_section * ring;
         let relaxed = (subumbrella[j] - subumbrella[i]).length();
         muscles.push(Muscle {
@@ -146,8 +148,9 @@ pub(super) fn ring_hoops(
             b: j,
             relaxed,
             rest: relaxed,
-            stiffness: fibre / relaxed.max(1e-9),
+            stiffness: (fibre + hoop) / relaxed.max(1e-9),
             level,
+            drive: fibre / (fibre + hoop).max(f32::MIN_POSITIVE),
         });
     }
     muscles

@@ -31,6 +31,9 @@ impl Fluid {
 
     /// Relaxes the velocity in the absorbing layer towards the stream.
     pub(crate) fn absorb(&mut self, dt: f32) {
+        if let Some(solved) = self.rings().map(|r| r.solved) {
+            return self.absorb_half(dt, solved);
+        }
         // Implicit Euler: stable for any rate and step.
         for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
             *u /= 1.0 + s * dt;
@@ -38,6 +41,30 @@ impl Fluid {
         let stream = self.stream;
         for (v, s) in self.v.iter_mut().zip(&self.sponge_v) {
             *v = stream + (*v - stream) / (1.0 + s * dt);
+        }
+    }
+
+    /// [`Fluid::absorb`] over the solved half of an axisymmetric slice (`columns` from
+    /// the left wall, and the `u` face past the axis), rows within the layer only.
+    fn absorb_half(&mut self, dt: f32, columns: usize) {
+        let (n, stream) = (self.n, self.stream);
+        for j in 0..n {
+            let rate = self.sponge_u[j * (n + 1)];
+            if rate > 0.0 {
+                let damp = 1.0 / (1.0 + rate * dt);
+                self.u[j * (n + 1)..][..columns + 1]
+                    .iter_mut()
+                    .for_each(|u| *u *= damp);
+            }
+        }
+        for j in 0..=n {
+            let rate = self.sponge_v[j * n];
+            if rate > 0.0 {
+                let damp = 1.0 / (1.0 + rate * dt);
+                self.v[j * n..][..columns]
+                    .iter_mut()
+                    .for_each(|v| *v = stream + (*v - stream) * damp);
+            }
         }
     }
 

@@ -10,6 +10,24 @@ impl Fluid {
     /// Adds the accumulated force density, then clears it.
     pub(crate) fn apply_force(&mut self, dt: f32) {
         let scale = dt / self.rho;
+        if let Some(solved) = self.rings().map(|r| r.solved) {
+            // The solved half (and the `u` face past the axis, which its divergence reads)
+            // only: the projection mirrors it over the rest.
+            let n = self.n;
+            for (field, force, row, columns) in [
+                (&mut self.u, &mut self.force_u, n + 1, solved + 1),
+                (&mut self.v, &mut self.force_v, n, solved),
+            ] {
+                for (u, f) in field.chunks_exact_mut(row).zip(force.chunks_exact(row)) {
+                    for (u, f) in u[..columns].iter_mut().zip(&f[..columns]) {
+                        *u += scale * *f;
+                    }
+                }
+                force.fill(0.0);
+            }
+            self.enforce_walls();
+            return;
+        }
         for (u, f) in self.u.iter_mut().zip(self.force_u.iter_mut()) {
             *u += scale * *f;
             *f = 0.0;

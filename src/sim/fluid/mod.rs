@@ -90,6 +90,8 @@ pub struct Fluid {
     bounds_u: Vec<(f32, f32)>,
     bounds_v: Vec<(f32, f32)>,
     phi: Vec<f32>,
+    /// One row of φ across the radius and the row below it (the r–z projection).
+    scratch_phi: Vec<f32>,
     poisson: PoissonSolver,
     /// The radii and pressure solve of an axisymmetric slice; `None` for a planar one.
     rings: Option<Box<Rings>>,
@@ -138,6 +140,7 @@ impl Fluid {
             bounds_u: vec![(0.0, 0.0); faces],
             bounds_v: vec![(0.0, 0.0); faces],
             phi: vec![0.0; n * n],
+            scratch_phi: Vec::new(),
             poisson: PoissonSolver::new(n, h),
             rings: None,
             spread_u: vec![1.0 / (h * h); n + 1],
@@ -204,7 +207,8 @@ impl Fluid {
     ///    step, then cleared;
     /// 3. [`diffuse`](Fluid::diffuse): viscosity;
     /// 4. [`absorb`](Fluid::absorb): the wake's absorbing layer;
-    /// 5. [`symmetrise`](Fluid::symmetrise), when the slice is held mirror-symmetric;
+    /// 5. [`symmetrise`](Fluid::symmetrise), when a planar slice is held mirror-symmetric
+    ///    (an axisymmetric one is solved on its half and mirrored by the projection);
     /// 6. [`project`](Fluid::project): the pressure that leaves the flow divergence-free.
     ///
     /// Stam's stable fluids (1999) add the force first and then advect; here advection
@@ -216,7 +220,8 @@ impl Fluid {
         self.apply_force(dt);
         self.diffuse(dt);
         self.absorb(dt);
-        if self.mirror || self.rings.is_some() {
+        // An axisymmetric slice is solved on its half and mirrored by the projection.
+        if self.mirror && self.rings.is_none() {
             self.symmetrise();
         }
         self.project();

@@ -34,6 +34,8 @@ pub(crate) struct Rings {
     /// |x − axis| of each column of cells, m (`n`); the axis column's h/4, the disc's
     /// area over its circumference: a cell's volume per radian is `cell · h²`.
     pub(crate) cell: Vec<f32>,
+    /// `1 / cell`, for the loops (a multiply where a divide costs several).
+    inverse_cell: Vec<f32>,
     /// Columns solved: from the left wall to the axis column, `n/2 + 1`.
     pub(crate) solved: usize,
     /// A no-slip outer wall for the viscous term (a pipe: test set-ups only; the slice's
@@ -54,7 +56,7 @@ impl Rings {
         let face = (0..=n)
             .map(|i| (i as f32 - c as f32 - 0.5).abs() * h)
             .collect();
-        let cell = (0..n)
+        let cell: Vec<f32> = (0..n)
             .map(|i| {
                 if i == c {
                     0.25 * h
@@ -65,6 +67,7 @@ impl Rings {
             .collect();
         Self {
             face,
+            inverse_cell: cell.iter().map(|r| 1.0 / r).collect(),
             cell,
             solved: c + 1,
             no_slip_wall: false,
@@ -95,80 +98,96 @@ impl Fluid {
     /// The r–z projection: the r-weighted divergence of the solved half, the exact solve,
     /// its gradient subtracted, the half mirrored.
     pub(super) fn project_rings(&mut self) {
-        let Some(rings) = self.rings.take() else {
+        let Some(mut rings) = self.rings.take() else {
             return;
         };
         let (n, h, c) = (self.n, self.h, rings.solved - 1);
-        // φ row k is the ring k cells out from the axis: column c − k.
+        // φ row k is the ring k cells out from the axis: column c − k, its cells along
+        // the axis contiguous (the transform runs along them).
+        let inverse_h = 1.0 / h;
         for j in 0..n {
+            let u = &self.u[j * (n + 1)..][..c + 2];
+            let (v0, v1) = (&self.v[j * n..][..c + 1], &self.v[(j + 1) * n..][..c + 1]);
+            let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
             for i in 0..=c {
-                self.phi[(c - i) * n + j] = self.ring_divergence(&rings, i, j);
+                let radial = (r[i + 1] * u[i + 1] - r[i] * u[i]) * inverse[i];
+                self.phi[(c - i) * n + j] = (radial + (v1[i] - v0[i])) * inverse_h;
             }
         }
-        let mut rings = rings;
         rings.solver.solve(&mut self.phi);
-        let phi = |i: usize, j: usize| self.phi[(c - i) * n + j];
+        // φ back across the radius, row by row: `across[i]` is column i's.
+        let mut across = std::mem::take(&mut self.scratch_phi);
+        across.resize(2 * (c + 1), 0.0);
+        let (row, below) = across.split_at_mut(c + 1);
         for j in 0..n {
-            let u = &mut self.u[j * (n + 1)..][..n + 1];
-            for (i, u) in u.iter_mut().enumerate().take(c + 1).skip(1) {
-                *u -= (phi(i, j) - phi(i - 1, j)) / h;
+            for (i, p) in row.iter_mut().enumerate() {
+                *p = self.phi[(c - i) * n + j];
             }
-        }
-        for j in 1..n {
-            let v = &mut self.v[j * n..][..n];
-            for (i, v) in v.iter_mut().enumerate().take(c + 1) {
-                *v -= (phi(i, j) - phi(i, j - 1)) / h;
+            let u = &mut self.u[j * (n + 1)..][..c + 1];
+            for i in 1..=c {
+                u[i] -= (row[i] - row[i - 1]) * inverse_h;
             }
+            let v = &mut self.v[j * n..][..c + 1];
+            if j == 0 {
+                // The open wake end: φ = 0 on the face; the inflow keeps the stream.
+                for (v, p) in v.iter_mut().zip(row.iter()) {
+                    *v -= 2.0 * p * inverse_h;
+                }
+            } else {
+                for ((v, p), q) in v.iter_mut().zip(row.iter()).zip(below.iter()) {
+                    *v -= (p - q) * inverse_h;
+                }
+            }
+            below.copy_from_slice(row);
         }
-        // The open wake end: φ = 0 on the face; the inflow keeps the stream.
-        for (i, v) in self.v[..n].iter_mut().enumerate().take(c + 1) {
-            *v -= 2.0 * phi(i, 0) / h;
-        }
+        self.scratch_phi = across;
         mirror(&mut self.u, &mut self.v, None, None, n);
         self.rings = Some(rings);
     }
 
-    /// One explicit sweep of the r–z viscous operator, `a = ν·dt/h²`, on the solved half
-    /// (then mirrored): `u` by the radial gradient of its r-weighted divergence (the hoop
-    /// term included), `v` by the r-weighted Laplacian; free slip at the outer wall,
-    /// zero gradient at the open ends, as in the plane.
+    /// One explicit sweep of the r–z viscous operator, `a = ν·dt/h²`, on the solved half:
+    /// `u` by the radial gradient of its r-weighted divergence (the hoop term included),
+    /// `v` by the r-weighted Laplacian; free slip at the outer wall, zero gradient at the
+    /// open ends, as in the plane. Only the faces just past the axis are mirrored after
+    /// it (the next sweep reads them); the projection mirrors the rest.
     pub(super) fn ring_viscosity_sweep(&mut self, rings: &Rings, a: f32) {
         let (n, c) = (self.n, rings.solved - 1);
-        let (r, cell) = (&rings.face, &rings.cell);
+        let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
         for j in 0..n {
             let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n - 1));
-            let row = |j: usize| &self.u[j * (n + 1)..][..n + 1];
-            let (below, here, above) = (row(jm), row(j), row(jp));
-            // (1/r)·∂(r u)/∂r of cell `i`, times h.
-            let expansion = |i: usize| (r[i + 1] * here[i + 1] - r[i] * here[i]) / cell[i];
-            let out = &mut self.scratch_u[j * (n + 1)..][..n + 1];
+            let below = &self.u[jm * (n + 1)..][..c + 2];
+            let here = &self.u[j * (n + 1)..][..c + 2];
+            let above = &self.u[jp * (n + 1)..][..c + 2];
+            let out = &mut self.scratch_u[j * (n + 1)..][..c + 2];
+            // (1/r)·∂(r u)/∂r of the cell left of each face, times h.
+            let mut left = (r[1] * here[1] - r[0] * here[0]) * inverse[0];
             out[0] = here[0];
-            let mut left = expansion(0);
             for i in 1..=c {
-                let right = expansion(i);
-                let radial = right - left;
+                let right = (r[i + 1] * here[i + 1] - r[i] * here[i]) * inverse[i];
                 let axial = below[i] + above[i] - 2.0 * here[i];
-                out[i] = here[i] + a * (radial + axial);
+                out[i] = here[i] + a * (right - left + axial);
                 left = right;
             }
+            out[c + 1] = -out[c];
         }
         for j in 0..=n {
             let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n));
-            let row = |j: usize| &self.v[j * n..][..n];
-            let (below, here, above) = (row(jm), row(j), row(jp));
-            let out = &mut self.scratch_v[j * n..][..n];
+            let below = &self.v[jm * n..][..c + 2];
+            let here = &self.v[j * n..][..c + 2];
+            let above = &self.v[jp * n..][..c + 2];
+            let out = &mut self.scratch_v[j * n..][..c + 2];
             for i in 0..=c {
                 let inner = match i {
                     0 if rings.no_slip_wall => 2.0 * here[0],
                     0 => 0.0,
                     _ => here[i] - here[i - 1],
                 };
-                let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) / cell[i];
+                let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) * inverse[i];
                 let axial = below[i] + above[i] - 2.0 * here[i];
                 out[i] = here[i] + a * (radial + axial);
             }
+            out[c + 1] = out[c - 1];
         }
-        mirror(&mut self.scratch_u, &mut self.scratch_v, None, None, n);
         std::mem::swap(&mut self.u, &mut self.scratch_u);
         std::mem::swap(&mut self.v, &mut self.scratch_v);
         self.enforce_walls();

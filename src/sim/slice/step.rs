@@ -127,7 +127,7 @@ impl SliceSim {
 
     fn set_muscles(&mut self, phase: f32) {
         for m in &mut self.body.muscles {
-            m.rest = m.relaxed * self.drive.rest_factor(phase, m.level);
+            m.rest = m.rest_at(self.drive.rest_factor(phase, m.level));
         }
     }
 
