@@ -84,13 +84,16 @@ pub struct Species {
     pub muscle_cross_section: f32,
     /// Cross-section of the hoop of mesoglea the muscle pulls through, as a fraction of
     /// the wall's: with `elastic_modulus`, the bell's stiffness against contraction, which
-    /// the slice (no circumference of its own) cannot feel otherwise.
+    /// the planar slice (no circumference of its own) cannot feel otherwise. Planar only:
+    /// in the axisymmetric slice every ring is a hoop of its real cross-section.
     pub hoop_cross_section: f32,
 
     // --- Muscles (paper section 3.3) ---
     /// Contractions per second, Hz (paper: 0.7).
     pub contraction_frequency: f32,
-    /// Muscle rest length at full contraction as a fraction of rest (paper: 0.56).
+    /// Muscle rest length at full contraction as a fraction of rest (paper: 0.56). In the
+    /// axisymmetric slice the muscle runs parallel to its ring's hoop of mesoglea, which
+    /// holds the ring somewhat wider.
     pub contraction_ratio: f32,
     /// Fraction of a cycle spent contracting; the rest is re-expansion.
     pub contraction_duty: f32,

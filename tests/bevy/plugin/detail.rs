@@ -36,9 +36,23 @@ fn largest_frame_changes(app: &mut App, e: Entity, frames: usize) -> (f32, f32) 
 
 #[test]
 fn beyond_the_budget_jellyfish_replay_their_cycle_and_change_tier_without_a_jump() {
+    replay_and_change_tier(species());
+}
+
+#[test]
+fn an_axisymmetric_species_is_stepped_recorded_and_replayed_alike() {
+    replay_and_change_tier(Species {
+        slice_geometry: SliceGeometry::Axisymmetric,
+        ..species()
+    });
+}
+
+/// Two jellyfish of `species` with room for one near: the other replays the species'
+/// recorded cycle, swims its distance, and changes tier both ways without a jump.
+fn replay_and_change_tier(species: Species) {
     let mut app = app();
     set_detail(&mut app, 1, 0);
-    let h = add_species(&mut app, species());
+    let h = add_species(&mut app, species.clone());
     let spawn = |app: &mut App, x: f32| {
         app.world_mut()
             .spawn((
@@ -55,11 +69,11 @@ fn beyond_the_budget_jellyfish_replay_their_cycle_and_change_tier_without_a_jump
     assert_eq!(slice(&app, second).tier(), Tier::Far);
     assert!(slice(&app, second).sim().is_none() && slice(&app, second).started());
     // The replay swims the recorded cycle's distance.
-    let period = species().period();
+    let period = species.period();
     let cycle = app
         .world_mut()
         .resource_mut::<CycleCaches>()
-        .get(&species())
+        .get(&species)
         .unwrap()
         .swim_per_cycle();
     let y = |app: &App| app.world().get::<Transform>(second).unwrap().translation.y;

@@ -18,7 +18,8 @@ use bevy_jellyfish::plugin::{
     ShapeBuffers, SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{
-    Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceSim, Species, SpeciesRejected,
+    Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceGeometry, SliceSim, Species,
+    SpeciesRejected,
 };
 use std::path::PathBuf;
 use std::time::Duration;
