@@ -120,3 +120,20 @@ fn bad_ron_is_an_error_not_a_panic() {
     let err = Species::from_ron("(diameter: -1.0)").unwrap_err();
     assert_eq!(err.field(), Some("diameter"));
 }
+
+#[test]
+fn the_slice_geometry_reads_and_writes_and_a_wrong_one_is_named() {
+    let s = Species::from_ron("(slice_geometry: Axisymmetric)").unwrap();
+    assert_eq!(s.slice_geometry, SliceGeometry::Axisymmetric);
+    let back = Species::from_ron(&s.to_ron().unwrap()).unwrap();
+    assert_eq!(back.slice_geometry, SliceGeometry::Axisymmetric);
+    assert_eq!(Species::aurelia().slice_geometry, SliceGeometry::Planar);
+    let err = Species::from_ron("(slice_geometry: Spherical)").unwrap_err();
+    let msg = err.to_string();
+    println!("{msg}");
+    assert!(matches!(err, SpeciesError::Parse(_)), "{msg}");
+    assert!(
+        msg.contains("Spherical") && msg.contains("Axisymmetric"),
+        "the message names the bad value and the good ones: {msg}"
+    );
+}
