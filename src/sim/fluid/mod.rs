@@ -90,8 +90,6 @@ pub struct Fluid {
     bounds_u: Vec<(f32, f32)>,
     bounds_v: Vec<(f32, f32)>,
     phi: Vec<f32>,
-    /// One row of φ across the radius and the row below it (the r–z projection).
-    scratch_phi: Vec<f32>,
     poisson: PoissonSolver,
     /// The radii and pressure solve of an axisymmetric slice; `None` for a planar one.
     rings: Option<Box<Rings>>,
@@ -140,7 +138,6 @@ impl Fluid {
             bounds_u: vec![(0.0, 0.0); faces],
             bounds_v: vec![(0.0, 0.0); faces],
             phi: vec![0.0; n * n],
-            scratch_phi: Vec::new(),
             poisson: PoissonSolver::new(n, h),
             rings: None,
             spread_u: vec![1.0 / (h * h); n + 1],

@@ -101,46 +101,50 @@ impl Fluid {
         let Some(mut rings) = self.rings.take() else {
             return;
         };
-        let (n, h, c) = (self.n, self.h, rings.solved - 1);
-        // φ row k is the ring k cells out from the axis: column c − k, its cells along
-        // the axis contiguous (the transform runs along them).
-        let inverse_h = 1.0 / h;
-        for j in 0..n {
-            let u = &self.u[j * (n + 1)..][..c + 2];
-            let (v0, v1) = (&self.v[j * n..][..c + 1], &self.v[(j + 1) * n..][..c + 1]);
-            let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
-            for i in 0..=c {
-                let radial = (r[i + 1] * u[i + 1] - r[i] * u[i]) * inverse[i];
-                self.phi[(c - i) * n + j] = (radial + (v1[i] - v0[i])) * inverse_h;
+        let (n, c) = (self.n, rings.solved - 1);
+        let inverse_h = 1.0 / self.h;
+        // φ row k is the ring k cells out from the axis, column i = c − k, its cells along
+        // the axis contiguous (the transform runs along them): each row reads its column's
+        // faces with a stride.
+        for (k, row) in self.phi.chunks_exact_mut(n).enumerate() {
+            let i = c - k;
+            let (outer, inner, inverse) = (rings.face[i], rings.face[i + 1], rings.inverse_cell[i]);
+            let u_outer = self.u[i..].iter().step_by(n + 1);
+            let u_inner = self.u[i + 1..].iter().step_by(n + 1);
+            let v_below = self.v[i..].iter().step_by(n);
+            let v_above = self.v[n + i..].iter().step_by(n);
+            for ((((p, uo), ui), vb), va) in row
+                .iter_mut()
+                .zip(u_outer)
+                .zip(u_inner)
+                .zip(v_below)
+                .zip(v_above)
+            {
+                *p = ((inner * ui - outer * uo) * inverse + (va - vb)) * inverse_h;
             }
         }
         rings.solver.solve(&mut self.phi);
-        // φ back across the radius, row by row: `across[i]` is column i's.
-        let mut across = std::mem::take(&mut self.scratch_phi);
-        across.resize(2 * (c + 1), 0.0);
-        let (row, below) = across.split_at_mut(c + 1);
-        for j in 0..n {
-            for (i, p) in row.iter_mut().enumerate() {
-                *p = self.phi[(c - i) * n + j];
+        for k in 0..=c {
+            let i = c - k;
+            let here = &self.phi[k * n..][..n];
+            // `v` of column i: the open wake end has φ = 0 on its face, the inflow keeps
+            // the stream.
+            let mut column = self.v[i..].iter_mut().step_by(n);
+            if let Some(v) = column.next() {
+                *v -= 2.0 * here[0] * inverse_h;
             }
-            let u = &mut self.u[j * (n + 1)..][..c + 1];
-            for i in 1..=c {
-                u[i] -= (row[i] - row[i - 1]) * inverse_h;
+            for (v, p) in column.zip(here.windows(2)) {
+                *v -= (p[1] - p[0]) * inverse_h;
             }
-            let v = &mut self.v[j * n..][..c + 1];
-            if j == 0 {
-                // The open wake end: φ = 0 on the face; the inflow keeps the stream.
-                for (v, p) in v.iter_mut().zip(row.iter()) {
-                    *v -= 2.0 * p * inverse_h;
-                }
-            } else {
-                for ((v, p), q) in v.iter_mut().zip(row.iter()).zip(below.iter()) {
-                    *v -= (p - q) * inverse_h;
+            // `u` on face i, between column i − 1 (ring k + 1) and column i.
+            if i >= 1 {
+                let outside = &self.phi[(k + 1) * n..][..n];
+                let faces = self.u[i..].iter_mut().step_by(n + 1);
+                for ((u, a), b) in faces.zip(here).zip(outside) {
+                    *u -= (a - b) * inverse_h;
                 }
             }
-            below.copy_from_slice(row);
         }
-        self.scratch_phi = across;
         mirror(&mut self.u, &mut self.v, None, None, n);
         self.rings = Some(rings);
     }

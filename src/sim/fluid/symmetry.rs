@@ -55,28 +55,34 @@ pub(super) fn mirror(
     n: usize,
 ) {
     let c = n / 2;
+    // Each row split at the axis, the part past it written from the traced part read
+    // backwards (face m from face 2c + 1 − m for u, column m from 2c − m for v).
+    let faces = n - 1 - c;
     for row in u.chunks_exact_mut(n + 1) {
-        for m in c + 1..n {
-            row[m] = -row[2 * c + 1 - m];
+        let (traced, past) = row.split_at_mut(c + 1);
+        for (m, t) in past[..faces].iter_mut().zip(traced.iter().rev()) {
+            *m = -*t;
         }
     }
     for row in v.chunks_exact_mut(n) {
-        for m in c + 1..n {
-            row[m] = row[2 * c - m];
+        let (traced, past) = row.split_at_mut(c + 1);
+        for (m, t) in past.iter_mut().zip(traced[..c].iter().rev()) {
+            *m = *t;
         }
     }
     if let Some(bounds) = bounds_u {
         for row in bounds.chunks_exact_mut(n + 1) {
-            for m in c + 1..n {
-                let (lo, hi) = row[2 * c + 1 - m];
-                row[m] = (-hi, -lo);
+            let (traced, past) = row.split_at_mut(c + 1);
+            for (m, &(lo, hi)) in past[..faces].iter_mut().zip(traced.iter().rev()) {
+                *m = (-hi, -lo);
             }
         }
     }
     if let Some(bounds) = bounds_v {
         for row in bounds.chunks_exact_mut(n) {
-            for m in c + 1..n {
-                row[m] = row[2 * c - m];
+            let (traced, past) = row.split_at_mut(c + 1);
+            for (m, t) in past.iter_mut().zip(traced[..c].iter().rev()) {
+                *m = *t;
             }
         }
     }
