@@ -42,6 +42,8 @@ pub(crate) struct Rings {
     /// wall is free-slip, as the plane's are).
     pub(crate) no_slip_wall: bool,
     solver: RingPoissonSolver,
+    /// φ row by row across the radius, the wall first (the projection's work space).
+    across: Vec<f32>,
 }
 
 /// Largest `ν·dt/h²` of one explicit sweep of the r–z viscous operator: its stiffest mode,
@@ -72,12 +74,14 @@ impl Rings {
             solved: c + 1,
             no_slip_wall: false,
             solver: RingPoissonSolver::new(c + 1, n, h),
+            across: vec![0.0; (c + 1) * n],
         }
     }
 
     /// Heap bytes.
     pub(crate) fn bytes(&self) -> usize {
-        (self.face.len() + self.cell.len()) * 4 + self.solver.bytes()
+        (self.face.len() + self.cell.len() + self.inverse_cell.len() + self.across.len()) * 4
+            + self.solver.bytes()
     }
 }
 
@@ -103,45 +107,37 @@ impl Fluid {
         };
         let (n, c) = (self.n, rings.solved - 1);
         let inverse_h = 1.0 / self.h;
-        // φ row k is the ring k cells out from the axis, column i = c − k, its cells along
-        // the axis contiguous (the transform runs along them): each row reads its column's
-        // faces with a stride.
-        for (k, row) in self.phi.chunks_exact_mut(n).enumerate() {
-            let i = c - k;
-            let (outer, inner, inverse) = (rings.face[i], rings.face[i + 1], rings.inverse_cell[i]);
-            let u_outer = self.u[i..].iter().step_by(n + 1);
-            let u_inner = self.u[i + 1..].iter().step_by(n + 1);
-            let v_below = self.v[i..].iter().step_by(n);
-            let v_above = self.v[n + i..].iter().step_by(n);
-            for ((((p, uo), ui), vb), va) in row
-                .iter_mut()
-                .zip(u_outer)
-                .zip(u_inner)
-                .zip(v_below)
-                .zip(v_above)
-            {
-                *p = ((inner * ui - outer * uo) * inverse + (va - vb)) * inverse_h;
+        let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
+        // The divergence row by row (`across`: row j, ring k at c − k), then turned so
+        // that each ring's cells along the axis are contiguous for the transform.
+        let across = &mut rings.across;
+        for (j, row) in across.chunks_exact_mut(c + 1).enumerate() {
+            let u = &self.u[j * (n + 1)..][..c + 2];
+            let (v0, v1) = (&self.v[j * n..][..c + 1], &self.v[(j + 1) * n..][..c + 1]);
+            for (i, d) in row.iter_mut().enumerate() {
+                let radial = (r[i + 1] * u[i + 1] - r[i] * u[i]) * inverse[i];
+                *d = (radial + (v1[i] - v0[i])) * inverse_h;
             }
         }
-        rings.solver.solve(&mut self.phi);
-        for k in 0..=c {
-            let i = c - k;
-            let here = &self.phi[k * n..][..n];
-            // `v` of column i: the open wake end has φ = 0 on its face, the inflow keeps
-            // the stream.
-            let mut column = self.v[i..].iter_mut().step_by(n);
-            if let Some(v) = column.next() {
-                *v -= 2.0 * here[0] * inverse_h;
+        transpose(across, &mut self.phi, n, c + 1);
+        rings.solver.solve_reversed(&mut self.phi);
+        transpose(&self.phi, across, c + 1, n);
+        for j in 0..n {
+            let phi = &across[j * (c + 1)..][..c + 1];
+            let u = &mut self.u[j * (n + 1)..][..c + 1];
+            for i in 1..=c {
+                u[i] -= (phi[i] - phi[i - 1]) * inverse_h;
             }
-            for (v, p) in column.zip(here.windows(2)) {
-                *v -= (p[1] - p[0]) * inverse_h;
-            }
-            // `u` on face i, between column i − 1 (ring k + 1) and column i.
-            if i >= 1 {
-                let outside = &self.phi[(k + 1) * n..][..n];
-                let faces = self.u[i..].iter_mut().step_by(n + 1);
-                for ((u, a), b) in faces.zip(here).zip(outside) {
-                    *u -= (a - b) * inverse_h;
+            let v = &mut self.v[j * n..][..c + 1];
+            if j == 0 {
+                // The open wake end: φ = 0 on its face; the inflow keeps the stream.
+                for (v, p) in v.iter_mut().zip(phi) {
+                    *v -= 2.0 * p * inverse_h;
+                }
+            } else {
+                let below = &across[(j - 1) * (c + 1)..][..c + 1];
+                for ((v, p), q) in v.iter_mut().zip(phi).zip(below) {
+                    *v -= (p - q) * inverse_h;
                 }
             }
         }
@@ -204,5 +200,21 @@ impl Fluid {
             .flat_map(|j| (0..rings.solved).map(move |i| (i, j)))
             .map(|(i, j)| self.ring_divergence(rings, i, j).abs())
             .fold(0.0, f32::max)
+    }
+}
+
+/// `to[col][row] = from[row][col]` for `rows × cols` row-major `from`, in tiles that stay
+/// in cache.
+fn transpose(from: &[f32], to: &mut [f32], rows: usize, cols: usize) {
+    const TILE: usize = 8;
+    for r0 in (0..rows).step_by(TILE) {
+        for c0 in (0..cols).step_by(TILE) {
+            for r in r0..(r0 + TILE).min(rows) {
+                let source = &from[r * cols..][..cols];
+                for c in c0..(c0 + TILE).min(cols) {
+                    to[c * rows + r] = source[c];
+                }
+            }
+        }
     }
 }

@@ -70,8 +70,18 @@ fn factors(rings: usize, n: usize, h: f32) -> Arc<Factors> {
             let lambda: Vec<f64> = (0..n)
                 .map(|m| (2.0 * (pi * (m as f64 + 0.5) / n as f64).cos() - 2.0) / (h * h))
                 .collect();
-            let (lower, diagonal, upper) = radial_operator(rings, h);
-            Arc::new(Factors::new(&lower, &diagonal, &upper, &lambda))
+            // Eliminated from the outer wall in to the axis: the fluid's column order.
+            let (lower, mut diagonal, upper) = radial_operator(rings, h);
+            let (mut inward_lower, mut inward_upper) = (upper, lower);
+            for v in [&mut inward_lower, &mut inward_upper, &mut diagonal] {
+                v.reverse();
+            }
+            Arc::new(Factors::new(
+                &inward_lower,
+                &diagonal,
+                &inward_upper,
+                &lambda,
+            ))
         },
     )
 }
@@ -97,7 +107,25 @@ impl RingPoissonSolver {
 
     /// Solves the r-weighted `∇²φ = rhs` in place; `field` holds one row per ring (the
     /// axis first), each `n` cells along the axis from the wake end up.
+    #[cfg(test)]
     pub(crate) fn solve(&mut self, field: &mut [f32]) {
+        let n = self.n;
+        let rings = field.len() / n;
+        // The same rows, the outer wall first.
+        for k in 0..rings / 2 {
+            let (a, b) = field.split_at_mut((rings - 1 - k) * n);
+            a[k * n..][..n].swap_with_slice(&mut b[..n]);
+        }
+        self.solve_reversed(field);
+        for k in 0..rings / 2 {
+            let (a, b) = field.split_at_mut((rings - 1 - k) * n);
+            a[k * n..][..n].swap_with_slice(&mut b[..n]);
+        }
+    }
+
+    /// [`Self::solve`] with the rings' rows in the fluid's order: the outer wall first, the
+    /// axis last.
+    pub(crate) fn solve_reversed(&mut self, field: &mut [f32]) {
         let n = self.n;
         debug_assert_eq!(field.len(), self.modes.len());
         for row in field.chunks_exact_mut(n) {
