@@ -7,19 +7,8 @@ use glam::Vec2;
 
 /// An axisymmetric fluid with some symmetric, divergent flow in it.
 fn swirl(n: usize) -> Fluid {
-    let mut f = Fluid::new(n, 0.01, 1.3e-6, 1000.0);
+    let mut f = super::tests::swirl(n);
     f.set_geometry(SliceGeometry::Axisymmetric);
-    for j in 0..n {
-        for i in 0..=n {
-            f.u[j * (n + 1) + i] = ((i * 31 + j * 17) % 13) as f32 * 0.01 - 0.06;
-        }
-    }
-    for j in 0..=n {
-        for i in 0..n {
-            f.v[j * n + i] = ((i * 7 + j * 29) % 11) as f32 * 0.01 - 0.05;
-        }
-    }
-    f.enforce_walls();
     f.symmetrise();
     f
 }

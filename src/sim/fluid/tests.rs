@@ -11,7 +11,8 @@ fn spread(f: &mut Fluid, points: &[Vec2], forces: &[Vec2]) {
     coupling.spread(f, forces);
 }
 
-fn swirl(n: usize) -> Fluid {
+/// A fluid with some divergent flow in it (the r–z tests start from it too).
+pub(super) fn swirl(n: usize) -> Fluid {
     let mut f = Fluid::new(n, 0.01, 1.3e-6, 1000.0);
     for j in 0..n {
         for i in 0..=n {

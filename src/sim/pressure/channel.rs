@@ -39,13 +39,17 @@ pub(crate) struct PoissonSolver {
     scratch: Vec<f32>,
 }
 
-/// The factors for `n` cells of size `h`, computed once per grid.
-fn factors(n: usize, h: f32) -> Arc<Factors> {
-    type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
+/// The factors for `n` cells of size `h`, computed once per grid: the channel's (φ = 0 on
+/// the open wake face at the bottom) or, `closed`, a closed box's (test set-ups only: see
+/// `fluid::Walls`), ∂φ/∂n = 0 on all four sides. A closed box's constant mode (k = 0,
+/// constant along each row) is singular and is pinned ([`Factors::pin_last`]): the
+/// pressure is defined up to a constant, which its gradient does not see.
+fn factors(n: usize, h: f32, closed: bool) -> Arc<Factors> {
+    type Shared = Mutex<HashMap<(usize, u32, bool), Arc<Factors>>>;
     static FACTORS: OnceLock<Shared> = OnceLock::new();
     shared(
         FACTORS.get_or_init(Default::default),
-        (n, h.to_bits()),
+        (n, h.to_bits(), closed),
         || {
             let (pi, h) = (std::f64::consts::PI, h as f64);
             let off = 1.0 / (h * h);
@@ -53,44 +57,13 @@ fn factors(n: usize, h: f32) -> Arc<Factors> {
             let lambda: Vec<f64> = (0..n)
                 .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
                 .collect();
-            // Bottom: ghost cell −φ (p = 0 on the face); top: ghost cell φ (∂p/∂y = 0).
+            // Bottom: ghost cell −φ (p = 0 on the face), or φ when closed; top: ghost
+            // cell φ (∂p/∂y = 0).
             let diagonal: Vec<f64> = (0..n)
                 .map(|j| {
-                    if j == 0 {
+                    if j == 0 && !closed {
                         -3.0 * off
-                    } else if j == n - 1 {
-                        -off
-                    } else {
-                        -2.0 * off
-                    }
-                })
-                .collect();
-            let off = vec![off; n];
-            Arc::new(Factors::new(&off, &diagonal, &off, &lambda))
-        },
-    )
-}
-
-/// The factors of a closed box (test set-ups only: see `fluid::Walls`): ∂φ/∂n = 0 on all
-/// four sides, the bottom face as the top. The constant mode (k = 0, constant along each
-/// row) is then singular, and is pinned ([`Factors::pin_last`]): the pressure is defined
-/// up to a constant, which its gradient does not see.
-fn closed_factors(n: usize, h: f32) -> Arc<Factors> {
-    type Shared = Mutex<HashMap<(usize, u32), Arc<Factors>>>;
-    static FACTORS: OnceLock<Shared> = OnceLock::new();
-    shared(
-        FACTORS.get_or_init(Default::default),
-        (n, h.to_bits()),
-        || {
-            let (pi, h) = (std::f64::consts::PI, h as f64);
-            let off = 1.0 / (h * h);
-            let lambda: Vec<f64> = (0..n)
-                .map(|k| (2.0 * (pi * k as f64 / n as f64).cos() - 2.0) * off)
-                .collect();
-            // Both ends: ghost cell φ (∂p/∂y = 0).
-            let diagonal: Vec<f64> = (0..n)
-                .map(|j| {
-                    if j == 0 || j == n - 1 {
+                    } else if j == 0 || j == n - 1 {
                         -off
                     } else {
                         -2.0 * off
@@ -99,7 +72,9 @@ fn closed_factors(n: usize, h: f32) -> Arc<Factors> {
                 .collect();
             let off = vec![off; n];
             let mut factors = Factors::new(&off, &diagonal, &off, &lambda);
-            factors.pin_last(0);
+            if closed {
+                factors.pin_last(0);
+            }
             Arc::new(factors)
         },
     )
@@ -107,12 +82,12 @@ fn closed_factors(n: usize, h: f32) -> Arc<Factors> {
 
 impl PoissonSolver {
     /// A solver for a closed `n × n` box of cells of size `h`: Neumann on all four sides
-    /// (see `closed_factors`), so [`PoissonSolver::solve`] returns the pressure up to a
+    /// (see `factors`), so [`PoissonSolver::solve`] returns the pressure up to a
     /// constant (its row means' mode pinned to zero on the top row). For the test set-ups
     /// of `fluid::Walls` only.
     pub(crate) fn closed(n: usize, h: f32) -> Self {
         Self {
-            factors: closed_factors(n, h),
+            factors: factors(n, h, true),
             ..Self::new(n, h)
         }
     }
@@ -124,7 +99,7 @@ impl PoissonSolver {
         Self {
             n,
             across,
-            factors: factors(n, h),
+            factors: factors(n, h, false),
             modes: vec![0.0; n * n],
             scratch,
         }
