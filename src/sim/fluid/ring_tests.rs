@@ -34,19 +34,6 @@ fn projection_leaves_no_r_weighted_divergence() {
     }
 }
 
-#[test]
-fn projection_is_idempotent() {
-    let mut f = swirl(33);
-    f.project();
-    let before = f.u.clone();
-    f.project();
-    let change =
-        f.u.iter()
-            .zip(&before)
-            .fold(0.0f32, |m, (a, b)| m.max((a - b).abs()));
-    assert!(change < 1e-5, "second projection changed u by {change}");
-}
-
 /// The axial force per radian the grid holds: each face's density times its volume per
 /// radian, `r·h²`, over the whole mirrored grid (which holds every ring twice).
 fn axial_force(f: &Fluid) -> f32 {
