@@ -90,6 +90,7 @@ pub const SECTIONS: &[Section] = &[
             param!(contraction_frequency, "contraction frequency", " Hz", 1.0, false, Real),
             param!(contraction_ratio, "contracted length", "", 1.0, false, Real),
             param!(contraction_duty, "contraction duty", "", 1.0, false, Real),
+            param!(relaxation_span, "relaxation span", "", 1.0, false, Real),
             param!(expansion_stagger, "expansion stagger", "", 1.0, false, Real),
             param!(muscle_modulus, "muscle modulus", " Pa", 1.0, true, Real),
             param!(muscle_cross_section, "muscle cross-section", "", 1.0, true, Real),

@@ -15,15 +15,17 @@ pub(crate) struct MuscleDrive {
     pub(crate) ratio: f32,
     /// Fraction of the cycle spent contracting.
     pub(crate) duty: f32,
+    /// Fraction of the time between contractions a spring in unison takes to relax.
+    pub(crate) span: f32,
     /// How much later and more slowly the springs nearer the aperture re-expand (0: in
     /// unison), `Species::expansion_stagger`.
     pub(crate) stagger: f32,
 }
 
-/// How far into the expansion window the slowest (margin) spring starts re-expanding.
-const STAGGER_DELAY: f32 = 0.2;
-/// Fraction of the expansion window a spring in unison takes to re-expand.
-const UNISON_EXPANSION: f32 = 0.5;
+/// How far into the slack of the expansion window (what a spring in unison leaves unused)
+/// the slowest (margin) spring starts re-expanding: the paper's margin waits a fifth of the
+/// window when a spring in unison takes half of it.
+const STAGGER_DELAY: f32 = 0.4;
 
 impl MuscleDrive {
     /// The rhythm a species asks for.
@@ -31,6 +33,7 @@ impl MuscleDrive {
         Self {
             ratio: species.contraction_ratio,
             duty: species.contraction_duty,
+            span: species.relaxation_span,
             stagger: species.expansion_stagger,
         }
     }
@@ -45,9 +48,11 @@ impl MuscleDrive {
             return 1.0 - depth * hermite(phi / self.duty);
         }
         let window = 1.0 - self.duty;
+        // A staggered spring starts later and ends no later than the next contraction.
         let lag = self.stagger * level.clamp(0.0, 1.0);
-        let start = self.duty + window * STAGGER_DELAY * lag;
-        let length = window * (UNISON_EXPANSION + (1.0 - UNISON_EXPANSION - STAGGER_DELAY) * lag);
+        let delay = STAGGER_DELAY * lag * (1.0 - self.span);
+        let start = self.duty + window * delay;
+        let length = window * (self.span + (1.0 - self.span - delay) * lag);
         if phi < start {
             self.ratio
         } else {
@@ -101,6 +106,38 @@ mod tests {
                 assert!((a - b).abs() < 0.01, "jump at {k}");
             }
         }
+    }
+
+    #[test]
+    fn a_spring_in_unison_relaxes_over_its_span() {
+        for span in [0.2, 0.5, 1.0] {
+            let mut s = Species::aurelia();
+            s.expansion_stagger = 0.0;
+            s.relaxation_span = span;
+            let d = MuscleDrive::new(&s);
+            let done = d.duty + span * (1.0 - d.duty);
+            let halfway = d.duty + 0.5 * span * (1.0 - d.duty);
+            let f = d.rest_factor(halfway, 0.5);
+            assert!(
+                (f - 0.5 * (1.0 + d.ratio)).abs() < 1e-3,
+                "span {span}: {f} halfway"
+            );
+            assert!(
+                (d.rest_factor(done + 1e-4, 0.5) - 1.0).abs() < 1e-6,
+                "span {span}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_paper_margin_waits_a_fifth_and_takes_four_fifths_of_the_window() {
+        let d = drive(1.0);
+        let window = 1.0 - d.duty;
+        let start = d.duty + 0.2 * window;
+        assert_eq!(d.rest_factor(start - 1e-4, 1.0), d.ratio);
+        assert!(d.rest_factor(start + 0.01, 1.0) > d.ratio);
+        assert!(d.rest_factor(0.999, 1.0) < 1.0);
+        assert!((d.rest_factor(1.0 - 1e-6, 1.0) - 1.0).abs() < 1e-4);
     }
 
     #[test]

@@ -33,6 +33,7 @@ impl Species {
             contraction_frequency: 0.7,
             contraction_ratio: 0.56,
             contraction_duty: 0.35,
+            relaxation_span: 0.5,
             expansion_stagger: 1.0,
             // A moon jelly's fringe: hundreds of short, fine marginal tentacles. Their drag
             // slows the bell by about a tenth (Miles & Battista 2019: tentacles reduce
