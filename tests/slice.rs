@@ -319,6 +319,26 @@ fn same_input_same_result(geometry: SliceGeometry) {
     assert_eq!(state_bits(&a), state_bits(&b));
 }
 
+in_both_geometries!(fn no_tentacles_by_count_is_no_tentacles_by_length);
+fn no_tentacles_by_count_is_no_tentacles_by_length(geometry: SliceGeometry) {
+    // A fringe of no tentacles once hung chains that slipped against no drag and blew up.
+    let none = |s: Species| {
+        let mut sim = SliceSim::new(&s).unwrap();
+        run_cycles(&mut sim, 3.0);
+        assert_eq!(sim.recoveries(), 0, "{}", s.tentacle_count);
+        state_bits(&sim)
+    };
+    let by_count = none(Species {
+        tentacle_count: 0,
+        ..aurelia(geometry)
+    });
+    let by_length = none(Species {
+        tentacle_length: 0.0,
+        ..aurelia(geometry)
+    });
+    assert_eq!(by_count, by_length);
+}
+
 in_both_geometries!(fn muscles_contract_the_bell_towards_the_ratio);
 fn muscles_contract_the_bell_towards_the_ratio(geometry: SliceGeometry) {
     let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();

@@ -180,8 +180,12 @@ pub(super) fn hang_tentacles(
     let margin_t = mesoglea_thickness(species, 1.0);
     let width = depth.at(points[0]);
     let tentacle_area = margin_t * species.tentacle_cross_section * width;
-    let segments = ((species.tentacle_length / spacing).round() as usize)
-        .max(if species.tentacle_length > 0.0 { 2 } else { 0 });
+    // No tentacles, no chains: a chain of no tentacles would slip against no drag at all.
+    let segments = if species.tentacle_count == 0 || species.tentacle_length <= 0.0 {
+        0
+    } else {
+        ((species.tentacle_length / spacing).round() as usize).max(2)
+    };
     let seg_len = if segments > 0 {
         species.tentacle_length / segments as f32
     } else {

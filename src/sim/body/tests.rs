@@ -145,3 +145,17 @@ fn relaxed_muscles_hold_the_rest_shape() {
     assert!(f.iter().all(|v| v.length() < 1e-4));
     assert_eq!(b.points, rest);
 }
+
+#[test]
+fn a_fringe_of_no_tentacles_hangs_no_chains() {
+    // Chains of no tentacles would slip against no drag at all and blow the slice up.
+    let mut s = Species::aurelia();
+    s.tentacle_count = 0;
+    let b = Body::new(&s, Vec2::new(0.2, 0.2), 0.004);
+    assert!(
+        b.tentacles.iter().all(|r| r.is_empty()),
+        "{:?}",
+        b.tentacles
+    );
+    assert_eq!(b.points.len(), b.bell.len());
+}
