@@ -1,4 +1,7 @@
-//! The limits table, fuzzed: random species with every field at once, extremes included.
+//! The limits table, fuzzed: random species with every field at once, extremes included;
+//! and the species files' text, mutated (truncated, cut, duplicated and unknown fields,
+//! odd and extreme values, broken syntax): never a panic, every refusal naming its field
+//! or its line and column.
 //! Either slice geometry, every advection scheme and kernel. Inside the limits a species
 //! runs — no panic, finite, its mesh within the vertex budget; outside, it is an error
 //! naming a field. The short run is part of `cargo test`; the long
@@ -7,7 +10,7 @@
 
 use bevy_jellyfish::shape::{JellyMesh, build_into};
 use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
-use bevy_jellyfish::species::{Advection, GonadShape, Kernel, SliceGeometry};
+use bevy_jellyfish::species::{Advection, GonadShape, Kernel, SliceGeometry, SpeciesError};
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::{Duration, Instant};
 
@@ -311,4 +314,212 @@ fn any_species_inside_the_limits_runs_a_second_within_two() {
     );
     assert!(valid >= 20, "{valid} validated");
     assert!(slowest <= Duration::from_secs(2), "{slowest:?}");
+}
+
+/// The texts the file fuzzer starts from: the shipped files as they are (a few fields
+/// each) and every preset written out in full (every field).
+fn seed_texts() -> Vec<String> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/species");
+    let mut texts: Vec<String> = std::fs::read_dir(dir)
+        .expect("assets/species")
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.to_string_lossy().ends_with(".species.ron"))
+        .map(|p| std::fs::read_to_string(p).expect("a species file"))
+        .collect();
+    texts.sort();
+    assert!(texts.len() >= 3, "the shipped species files");
+    texts.extend(Species::presets().iter().map(|s| s.to_ron().expect("RON")));
+    texts
+}
+
+/// Values a hand-edited or corrupted file may hold where a number should be.
+const ODD_VALUES: &[&str] = &[
+    "NaN",
+    "inf",
+    "-inf",
+    "1e39",
+    "-1e39",
+    "1e-45",
+    "-0.0",
+    "0",
+    "4294967296",
+    "-1",
+    "18446744073709551616",
+    "1e308",
+    "\"text\"",
+    "true",
+    "[1.0, 2.0]",
+    "()",
+    "Some(1.0)",
+    "0x10",
+    "1_000",
+    "+5",
+    ".5",
+    "5.",
+    "1e",
+    "--1",
+    "Planar",
+    "(x: 1)",
+];
+
+/// One random edit of `text`: truncation, a cut, a duplicated or unknown field, a value
+/// replaced by an odd one or scaled to an extreme, a renamed field, broken brackets,
+/// commas or quotes, bytes from elsewhere in the file.
+fn mutate(rng: &mut Rng, text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let at = |rng: &mut Rng| (rng.next() % (chars.len() as u64 + 1)) as usize;
+    let string = |c: &[char]| c.iter().collect::<String>();
+    let lines: Vec<&str> = text.lines().collect();
+    let field_lines: Vec<usize> = (0..lines.len())
+        .filter(|&i| lines[i].contains(':') && !lines[i].trim_start().starts_with("//"))
+        .collect();
+    let pick_field_line = |rng: &mut Rng| {
+        (!field_lines.is_empty())
+            .then(|| field_lines[(rng.next() % field_lines.len() as u64) as usize])
+    };
+    let with_line = |i: usize, new: String| {
+        let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+        out[i] = new;
+        out.join("\n")
+    };
+    match rng.next() % 12 {
+        0 => string(&chars[..at(rng)]),
+        1 => {
+            let (a, b) = (at(rng), at(rng));
+            let (a, b) = (a.min(b), a.max(b).min(a.min(b) + 40));
+            string(&chars[..a]) + &string(&chars[b..])
+        }
+        2 => match pick_field_line(rng) {
+            Some(i) => with_line(i, format!("{}\n{}", lines[i], lines[i])),
+            None => text.to_string(),
+        },
+        3 => {
+            let p = at(rng);
+            string(&chars[..p]) + "bogus_field: 1.0," + &string(&chars[p..])
+        }
+        4 | 5 => match pick_field_line(rng) {
+            Some(i) => {
+                let (name, _) = lines[i].split_once(':').expect("a field line");
+                let odd = ODD_VALUES[(rng.next() % ODD_VALUES.len() as u64) as usize];
+                with_line(i, format!("{name}: {odd},"))
+            }
+            None => text.to_string(),
+        },
+        6 => match pick_field_line(rng) {
+            Some(i) => {
+                let (name, value) = lines[i].split_once(':').expect("a field line");
+                let number: Option<f64> = value.trim().trim_end_matches(',').parse().ok();
+                let scale = [1e6, 1e-6, -1.0, 1e30][(rng.next() % 4) as usize];
+                match number {
+                    Some(x) => with_line(i, format!("{name}: {},", x * scale)),
+                    None => with_line(i, format!("{name}: {scale},")),
+                }
+            }
+            None => text.to_string(),
+        },
+        7 => match pick_field_line(rng) {
+            Some(i) => {
+                let (name, value) = lines[i].split_once(':').expect("a field line");
+                with_line(i, format!("{}x:{value}", name.trim_end()))
+            }
+            None => text.to_string(),
+        },
+        8 => {
+            let targets = ['(', ')', ',', '[', ']', '"', ':'];
+            let t = targets[(rng.next() % targets.len() as u64) as usize];
+            let hits: Vec<usize> = (0..chars.len()).filter(|&k| chars[k] == t).collect();
+            if hits.is_empty() {
+                text.to_string()
+            } else {
+                let k = hits[(rng.next() % hits.len() as u64) as usize];
+                string(&chars[..k]) + &string(&chars[k + 1..])
+            }
+        }
+        9 => {
+            let (from, p) = (at(rng), at(rng));
+            let piece = string(&chars[from..(from + 12).min(chars.len())]);
+            string(&chars[..p]) + &piece + &string(&chars[p..])
+        }
+        10 => {
+            let p = at(rng);
+            let junk = ['\0', '\u{feff}', 'é', '}', '{', '#', '\\', '\n', '\t', '∞'];
+            let c = junk[(rng.next() % junk.len() as u64) as usize];
+            string(&chars[..p]) + &c.to_string() + &string(&chars[p..])
+        }
+        _ => {
+            // Two edits at once.
+            let once = mutate(rng, text);
+            mutate(rng, &once)
+        }
+    }
+}
+
+/// Whether a refusal says where: a field of the species by name, or a line and column.
+fn names_field_or_position(e: &SpeciesError) -> bool {
+    if let Some(field) = e.field() {
+        return e.to_string().contains(field);
+    }
+    let text = e.to_string();
+    // RON's positions read `line:column`.
+    text.split(|c: char| !c.is_ascii_digit() && c != ':')
+        .any(|w| {
+            let mut parts = w.split(':');
+            matches!(
+                (parts.next(), parts.next()),
+                (Some(l), Some(c)) if !l.is_empty() && !c.is_empty()
+            )
+        })
+}
+
+/// `count` mutants of the shipped files: parsing never panics; a refusal names the field
+/// or the line and column; up to `run_accepted` accepted mutants run `frames` frames of
+/// their slice, finite. Returns (accepted, refused, run).
+fn fuzz_files(count: u64, run_accepted: usize, frames: usize) -> (usize, usize, usize) {
+    let texts = seed_texts();
+    let (mut accepted, mut refused, mut ran) = (0, 0, 0);
+    for seed in 1..=count {
+        let mut rng = Rng(seed.wrapping_mul(0xd1b5_4a32_d192_ed03) | 1);
+        let original = &texts[(rng.next() % texts.len() as u64) as usize];
+        let text = mutate(&mut rng, original);
+        let parsed = std::panic::catch_unwind(|| Species::from_ron(&text))
+            .unwrap_or_else(|_| panic!("seed {seed}: parsing panicked on:\n{text}"));
+        match parsed {
+            Ok(s) => {
+                accepted += 1;
+                if ran < run_accepted {
+                    ran += 1;
+                    run(&s, frames, seed);
+                }
+            }
+            Err(e) => {
+                refused += 1;
+                assert!(
+                    names_field_or_position(&e),
+                    "seed {seed}: the refusal says neither field nor place: {e}\n{text}"
+                );
+            }
+        }
+    }
+    (accepted, refused, ran)
+}
+
+#[test]
+fn mutated_species_files_are_refused_by_field_or_place_and_never_panic() {
+    let (accepted, refused, _) = fuzz_files(400, 3, 3);
+    assert!(
+        accepted > 0 && refused > 0,
+        "{accepted} accepted, {refused} refused"
+    );
+}
+
+#[test]
+#[ignore = "long: 5000 mutated species files, 300 of the accepted ones run"]
+fn five_thousand_mutated_species_files() {
+    let (accepted, refused, ran) = fuzz_files(5000, 300, 15);
+    println!(
+        "5000 mutated species files: {accepted} accepted, {refused} refused (each naming \
+         its field or its line and column), {ran} accepted ones ran a quarter second"
+    );
+    assert!(ran >= 100, "{ran} ran");
 }
