@@ -11,7 +11,9 @@ use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{CycleCaches, JellyfishMeshes, JellyfishSlice, SurfacePath};
-use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings};
+use bevy_jellyfish::{
+    Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, Species,
+};
 use std::time::{Duration, Instant};
 
 /// How long slices may take to start before the bench gives up, s.
@@ -39,7 +41,6 @@ pub fn run(
     // No renderer here, so no storage buffers unless we ask: templates pack their shapes
     // into them as in the window (what reaches the GPU is what the bench counts).
     .init_asset::<ShaderBuffer>()
-    .insert_resource(school)
     .insert_resource(crate::water::tank_water())
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
         1.0 / fps,
@@ -47,7 +48,15 @@ pub fn run(
     spawn_camera(&mut app);
     app.finish();
     app.cleanup();
-    // Load the species and build every slice.
+    // The species load first, with the game's clock paused, and the schools are spawned
+    // after: how many frames a file takes to load depends on the disk and the threads,
+    // and a jellyfish's slice starts when its species is there, the schools' steering
+    // reads the clock. (Held for the whole run, so the species are never dropped.)
+    app.world_mut().resource_mut::<Time<Virtual>>().pause();
+    let _species = load_species(&mut app)?;
+    app.world_mut().resource_mut::<Time<Virtual>>().unpause();
+    app.insert_resource(school);
+    // Build every slice.
     let expected = (school.per_species * crate::school::SPECIES.len()) as f64;
     let start = Instant::now();
     let mut warm_up_frames = 0;
@@ -133,7 +142,32 @@ pub fn run(
     println!("in view: {seen} of {all} meshed in the last frame");
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
     println!("tank water: {:.2} ms per frame (one thread)", water / n);
+    println!("state hash: {:016x}", state_hash(&mut app));
     Ok(())
+}
+
+/// FNV-1a over every jellyfish's seed, tier, phase and pose, to the bit, in an order that
+/// does not depend on how entities were allocated: the same for any thread count.
+fn state_hash(app: &mut App) -> u64 {
+    let mut q = app.world_mut().query::<(&JellyfishSlice, &Transform)>();
+    let mut states: Vec<Vec<u32>> = q
+        .iter(app.world())
+        .map(|(slice, t)| {
+            let mut bits = vec![slice.seed(), slice.tier() as u32];
+            bits.push(slice.phase().map_or(u32::MAX, f32::to_bits));
+            bits.extend(t.translation.to_array().map(f32::to_bits));
+            bits.extend(t.rotation.to_array().map(f32::to_bits));
+            bits
+        })
+        .collect();
+    states.sort_unstable();
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for word in states.iter().flatten() {
+        for byte in word.to_le_bytes() {
+            hash = (hash ^ byte as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    hash
 }
 
 /// A camera where the windowed app's starts, 16:9, with its frustum (no renderer here to
@@ -147,6 +181,39 @@ fn spawn_camera(app: &mut App) {
     let frustum: Frustum = projection.compute_frustum(&GlobalTransform::from(transform));
     app.world_mut()
         .spawn((Camera3d::default(), projection, transform, frustum));
+}
+
+/// Loads the shipped species the schools use, frame by frame, until all have loaded.
+fn load_species(app: &mut App) -> Result<Vec<Handle<Species>>, String> {
+    let server = app.world().resource::<AssetServer>().clone();
+    let handles: Vec<Handle<Species>> = crate::school::SPECIES
+        .iter()
+        .map(|(name, _)| server.load(format!("species/{name}.species.ron")))
+        .collect();
+    let start = Instant::now();
+    loop {
+        let states: Vec<_> = handles.iter().map(|h| server.get_load_state(h)).collect();
+        if let Some(Some(LoadState::Failed(error))) = states
+            .iter()
+            .find(|s| matches!(s, Some(LoadState::Failed(_))))
+        {
+            return Err(format!(
+                "a species did not load: {error}; run it from the repository (`cargo run \
+                 --release --features examples --example aquarium -- --bench`) or set \
+                 BEVY_ASSET_ROOT to the folder holding assets/"
+            ));
+        }
+        if states.iter().all(|s| matches!(s, Some(LoadState::Loaded))) {
+            return Ok(handles);
+        }
+        if start.elapsed() > READY_TIMEOUT {
+            return Err(format!(
+                "the species files did not load in {} s",
+                READY_TIMEOUT.as_secs()
+            ));
+        }
+        app.update();
+    }
 }
 
 /// Why a jellyfish's species failed to load, if one did.

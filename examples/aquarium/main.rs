@@ -20,7 +20,8 @@
 //! The headless benchmark, no renderer at all, prints the wall and CPU time of a frame,
 //! the spread of frame times and the mesh data handed to the renderer:
 //! `cargo run --release --features examples --example aquarium -- --bench --count 100
-//! --frames 600 --fps 60`.
+//! --frames 600 --fps 60`. It ends with a hash of every jellyfish's pose, phase and tier:
+//! with `--threads N` (N threads in the compute pool), the same for any N.
 
 mod bench;
 mod camera;
@@ -91,6 +92,10 @@ struct Args {
     /// benchmark frames per second (default 60)
     #[argh(option, default = "60.0", from_str_fn(fps))]
     fps: f64,
+    /// threads in Bevy's compute pool, where jellyfish are stepped and meshed (default:
+    /// every core)
+    #[argh(option, from_str_fn(threads))]
+    threads: Option<usize>,
 }
 
 impl Args {
@@ -128,6 +133,14 @@ fn size(value: &str) -> Result<(u32, u32), String> {
     }
 }
 
+fn threads(value: &str) -> Result<usize, String> {
+    match value.parse::<usize>() {
+        Ok(n) if n > 0 => Ok(n),
+        Ok(_) => Err("threads must be at least 1".into()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 fn fps(value: &str) -> Result<f64, String> {
     match value.parse::<f64>() {
         Ok(fps) if fps.is_finite() && fps > 0.0 => Ok(fps),
@@ -154,8 +167,14 @@ fn main() -> ExitCode {
             ..scene::settings()
         };
         let frames = args.frames.unwrap_or(600);
-        bench::run(args.school(), frames, args.fps, settings, task_pools())
-            .map_err(|e| format!("aquarium --bench: {e}"))
+        bench::run(
+            args.school(),
+            frames,
+            args.fps,
+            settings,
+            task_pools(args.threads),
+        )
+        .map_err(|e| format!("aquarium --bench: {e}"))
     } else if let Some(path) = &args.screenshot {
         picture::render(&args, path).map_err(|e| format!("aquarium: {e}"))
     } else {
@@ -183,7 +202,7 @@ fn window(args: &Args) {
                 }),
                 ..default()
             })
-            .set(task_pools()),
+            .set(task_pools(args.threads)),
         AquariumPlugin {
             school: args.school(),
             surfaces: args.surfaces,
@@ -199,12 +218,21 @@ fn window(args: &Args) {
 }
 
 /// Every core for the compute pool, where the plugin steps and meshes jellyfish in
-/// parallel. Bevy's default keeps a quarter of the cores each for I/O and async tasks, at
-/// least one each: on two cores that leaves the simulation one.
-fn task_pools() -> TaskPoolPlugin {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+/// parallel (Bevy's default keeps a quarter of the cores each for I/O and async tasks, at
+/// least one each: on two cores that leaves the simulation one); or exactly `threads`
+/// there.
+fn task_pools(threads: Option<usize>) -> TaskPoolPlugin {
     let mut options = TaskPoolOptions::default();
-    options.compute.min_threads = cores;
+    match threads {
+        Some(n) => {
+            options.compute.min_threads = n;
+            options.compute.max_threads = n;
+        }
+        None => {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            options.compute.min_threads = cores;
+        }
+    }
     TaskPoolPlugin {
         task_pool_options: options,
     }

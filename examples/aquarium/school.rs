@@ -45,8 +45,11 @@ pub struct Swimmer {
 }
 
 pub fn plugin(app: &mut App) {
-    app.add_systems(Update, respawn.run_if(resource_changed::<School>))
-        .add_systems(FixedUpdate, steer.before(JellyfishSystems::StepSlices));
+    app.add_systems(
+        Update,
+        respawn.run_if(resource_exists_and_changed::<School>),
+    )
+    .add_systems(FixedUpdate, steer.before(JellyfishSystems::StepSlices));
 }
 
 /// Where jellyfish may be placed: clear of the walls, the floor and the surface.
