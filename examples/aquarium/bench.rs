@@ -29,59 +29,14 @@ pub fn run(
     settings: JellyfishSettings,
     pools: TaskPoolPlugin,
 ) -> Result<(), String> {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins.set(pools),
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-        JellyfishPlugin { settings },
-        crate::school::plugin,
-    ))
-    // No renderer here, so no storage buffers unless we ask: templates pack their shapes
-    // into them as in the window (what reaches the GPU is what the bench counts).
-    .init_asset::<ShaderBuffer>()
-    .insert_resource(crate::water::tank_water())
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / fps,
-    )));
-    spawn_camera(&mut app);
-    app.finish();
-    app.cleanup();
-    // The species load first, with the game's clock paused, and the schools are spawned
-    // after: how many frames a file takes to load depends on the disk and the threads,
-    // and a jellyfish's slice starts when its species is there, the schools' steering
-    // reads the clock. (Held for the whole run, so the species are never dropped.)
-    app.world_mut().resource_mut::<Time<Virtual>>().pause();
-    let _species = load_species(&mut app)?;
-    app.world_mut().resource_mut::<Time<Virtual>>().unpause();
-    app.insert_resource(school);
-    // Build every slice.
-    let expected = (school.per_species * crate::school::SPECIES.len()) as f64;
+    let mut app = headless(fps, settings, pools, AssetPlugin::default());
+    // (Held for the whole run, so the species are never dropped.)
+    let _species = start_schools(&mut app, school)?;
     let start = Instant::now();
-    let mut warm_up_frames = 0;
-    while count(&app) < expected {
-        app.update();
-        warm_up_frames += 1;
-        if let Some(error) = load_failure(&mut app) {
-            return Err(format!(
-                "{error}; run it from the repository (`cargo run --release --features \
-                 examples --example aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder \
-                 holding assets/"
-            ));
-        }
-        if start.elapsed() > READY_TIMEOUT {
-            return Err(format!(
-                "only {} of {expected} jellyfish started in {} s: do the species files in \
-                 {}/assets/species load?",
-                count(&app),
-                READY_TIMEOUT.as_secs(),
-                std::env::current_dir().map_or("?".into(), |d| d.display().to_string()),
-            ));
-        }
-    }
+    let warm_up_frames = until_started(&mut app, school)?;
     println!(
-        "ready: {expected} jellyfish started in {:.2} s ({warm_up_frames} frames)",
+        "ready: {} jellyfish started in {:.2} s ({warm_up_frames} frames)",
+        school.per_species * crate::school::SPECIES.len(),
         start.elapsed().as_secs_f64()
     );
     for _ in 0..(fps as usize) {
@@ -168,6 +123,76 @@ fn state_hash(app: &mut App) -> u64 {
         }
     }
     hash
+}
+
+/// The aquarium without a renderer: the plugin, the schools' steering and the tank's
+/// water, `fps` frames a second of game time whatever the wall clock.
+pub fn headless(
+    fps: f64,
+    settings: JellyfishSettings,
+    pools: TaskPoolPlugin,
+    assets: AssetPlugin,
+) -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins.set(pools),
+        assets,
+        MeshPlugin,
+        TransformPlugin,
+        JellyfishPlugin { settings },
+        crate::school::plugin,
+    ))
+    // No renderer here, so no storage buffers unless we ask: templates pack their shapes
+    // into them as in the window (what reaches the GPU is what the bench counts).
+    .init_asset::<ShaderBuffer>()
+    .insert_resource(crate::water::tank_water())
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+        1.0 / fps,
+    )));
+    spawn_camera(&mut app);
+    app.finish();
+    app.cleanup();
+    app
+}
+
+/// Loads the species, then spawns the schools. The species load first, with the game's
+/// clock paused: how many frames a file takes to load depends on the disk and the
+/// threads, and a jellyfish's slice starts when its species is there, the schools'
+/// steering reads the clock. Returns the species' handles, to be held.
+pub fn start_schools(app: &mut App, school: School) -> Result<Vec<Handle<Species>>, String> {
+    app.world_mut().resource_mut::<Time<Virtual>>().pause();
+    let species = load_species(app)?;
+    app.world_mut().resource_mut::<Time<Virtual>>().unpause();
+    app.insert_resource(school);
+    Ok(species)
+}
+
+/// Frames until every jellyfish of `school` has its slice; errors if they never do.
+pub fn until_started(app: &mut App, school: School) -> Result<usize, String> {
+    let expected = (school.per_species * crate::school::SPECIES.len()) as f64;
+    let start = Instant::now();
+    let mut frames = 0;
+    while count(app) < expected {
+        app.update();
+        frames += 1;
+        if let Some(error) = load_failure(app) {
+            return Err(format!(
+                "{error}; run it from the repository (`cargo run --release --features \
+                 examples --example aquarium -- --bench`) or set BEVY_ASSET_ROOT to the folder \
+                 holding assets/"
+            ));
+        }
+        if start.elapsed() > READY_TIMEOUT {
+            return Err(format!(
+                "only {} of {expected} jellyfish started in {} s: do the species files in \
+                 {}/assets/species load?",
+                count(app),
+                READY_TIMEOUT.as_secs(),
+                std::env::current_dir().map_or("?".into(), |d| d.display().to_string()),
+            ));
+        }
+    }
+    Ok(frames)
 }
 
 /// A camera where the windowed app's starts, 16:9, with its frustum (no renderer here to

@@ -22,6 +22,10 @@
 //! `cargo run --release --features examples --example aquarium -- --bench --count 100
 //! --frames 600 --fps 60`. It ends with a hash of every jellyfish's pose, phase and tier:
 //! with `--threads N` (N threads in the compute pool), the same for any N.
+//!
+//! The soak, `-- --soak SECONDS --count 334`: the same for longer, with churn (jellyfish
+//! despawned and spawned, species edited, a species file rewritten valid and broken, the
+//! tank stirred), ending with one line of memory and failures.
 
 mod bench;
 mod camera;
@@ -33,6 +37,7 @@ mod school;
 #[path = "../common/offscreen.rs"]
 mod screenshot;
 mod snow;
+mod soak;
 mod stats;
 mod tank;
 #[cfg(feature = "editor")]
@@ -92,6 +97,11 @@ struct Args {
     /// benchmark frames per second (default 60)
     #[argh(option, default = "60.0", from_str_fn(fps))]
     fps: f64,
+    /// the soak: this many seconds of the headless aquarium with jellyfish despawned and
+    /// spawned, species edited and files rewritten, the tank stirred; prints memory and
+    /// failures in one line
+    #[argh(option)]
+    soak: Option<f64>,
     /// threads in Bevy's compute pool, where jellyfish are stepped and meshed (default:
     /// every core)
     #[argh(option, from_str_fn(threads))]
@@ -155,7 +165,19 @@ fn main() -> ExitCode {
         eprintln!("aquarium: {e}");
         return ExitCode::FAILURE;
     }
-    let result = if args.bench {
+    let result = if let Some(seconds) = args.soak {
+        let settings = JellyfishSettings {
+            // As in the bench: what the window uses on a GPU that can.
+            surfaces: match args.surfaces {
+                SurfaceMode::Auto => SurfaceMode::Templates,
+                chosen => chosen,
+            },
+            detail: args.detail(),
+            ..scene::settings()
+        };
+        soak::run(args.school(), seconds, settings, task_pools(args.threads))
+            .map_err(|e| format!("aquarium --soak: {e}"))
+    } else if args.bench {
         let settings = JellyfishSettings {
             // Headless, Auto would mean CPU meshes; the windowed app on a GPU that can
             // uses templates, so that is what the bench measures by default.

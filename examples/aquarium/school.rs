@@ -53,7 +53,7 @@ pub fn plugin(app: &mut App) {
 }
 
 /// Where jellyfish may be placed: clear of the walls, the floor and the surface.
-fn place(rng: &mut StdRng) -> Vec3 {
+pub fn place(rng: &mut StdRng) -> Vec3 {
     Vec3::new(
         rng.random_range(-HALF_WIDTH + 1.5..HALF_WIDTH - 1.5),
         rng.random_range(FLOOR_ZONE..SURFACE - SURFACE_ZONE),
@@ -102,23 +102,7 @@ fn respawn(
         .collect();
     let radii: Vec<f32> = members.iter().map(|(_, r)| *r).collect();
     for ((name, radius), at) in members.iter().zip(positions(&radii, &mut rng)) {
-        let species: Handle<Species> = assets.load(format!("species/{name}.species.ron"));
-        // Mostly upright, leaning up to ~25 degrees in a random direction.
-        let lean = Quat::from_rotation_y(rng.random_range(0.0..std::f32::consts::TAU))
-            * Quat::from_rotation_x(rng.random_range(0.0..0.45));
-        commands.spawn((
-            Jellyfish::new(species)
-                .with_seed(rng.random())
-                .with_phase(rng.random()),
-            Swimmer {
-                radius: *radius,
-                wander: Vec3::from_array(rng.random()) * 100.0,
-            },
-            Steering::heading(Vec3::Y).with_agility(AGILITY),
-            Transform::from_translation(at)
-                .with_rotation(lean)
-                .with_scale(Vec3::splat(SCALE)),
-        ));
+        commands.spawn(member(&assets, name, *radius, at, &mut rng));
     }
     info!(
         "{} jellyfish: {} of each of {}",
@@ -126,6 +110,34 @@ fn respawn(
         school.per_species,
         SPECIES.map(|s| s.0).join(", ")
     );
+}
+
+/// A jellyfish of the species file `name` at `at`, keeping `radius` from its neighbours,
+/// with its own seed, phase, lean and wander.
+pub fn member(
+    assets: &AssetServer,
+    name: &str,
+    radius: f32,
+    at: Vec3,
+    rng: &mut StdRng,
+) -> impl Bundle {
+    let species: Handle<Species> = assets.load(format!("species/{name}.species.ron"));
+    // Mostly upright, leaning up to ~25 degrees in a random direction.
+    let lean = Quat::from_rotation_y(rng.random_range(0.0..std::f32::consts::TAU))
+        * Quat::from_rotation_x(rng.random_range(0.0..0.45));
+    (
+        Jellyfish::new(species)
+            .with_seed(rng.random())
+            .with_phase(rng.random()),
+        Swimmer {
+            radius,
+            wander: Vec3::from_array(rng.random()) * 100.0,
+        },
+        Steering::heading(Vec3::Y).with_agility(AGILITY),
+        Transform::from_translation(at)
+            .with_rotation(lean)
+            .with_scale(Vec3::splat(SCALE)),
+    )
 }
 
 /// How strongly the walls push at `p`: zero beyond the margin, one at the wall, per axis.
