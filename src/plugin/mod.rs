@@ -52,6 +52,8 @@
 //! The schedule, the species assets, swimming, interpolation and the slice are the core
 //! every other part builds on; the rest may be left out.
 
+#[cfg(feature = "debug")]
+mod debug;
 mod diagnostics;
 mod interpolation;
 mod jellyfish;
@@ -66,6 +68,8 @@ mod tank;
 mod timings;
 mod water;
 
+#[cfg(feature = "debug")]
+pub use debug::{JellyfishDebugPlugin, JellyfishGizmos, ShowSlice, TraceParticles};
 pub use diagnostics::{JellyfishDiagnostics, JellyfishDiagnosticsPlugin};
 pub use interpolation::InterpolationPlugin;
 pub use jellyfish::Jellyfish;

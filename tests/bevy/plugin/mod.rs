@@ -24,6 +24,7 @@ use bevy_jellyfish::{
 use std::path::PathBuf;
 use std::time::Duration;
 
+mod debug;
 mod detail;
 mod lifecycle;
 mod species;
