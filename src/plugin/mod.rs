@@ -60,6 +60,7 @@ mod jellyfish;
 mod lod;
 mod render;
 mod schedule;
+mod school;
 mod settings;
 mod slice;
 mod species_asset;
@@ -81,6 +82,7 @@ pub use render::{
     glow_material, tentacle_material,
 };
 pub use schedule::{JellyfishSchedulePlugin, JellyfishSystems};
+pub use school::{JellyfishSchool, MemberOf, SchoolMembers, SchoolPlugin};
 pub use settings::{DetailLevels, JellyfishSettings, SurfaceMode};
 pub use slice::{
     JellyfishSlice, JellyfishStarted, SlicePlugin, SliceRecovered, StrokeStarted, Tier,
@@ -110,6 +112,7 @@ impl PluginGroup for JellyfishPlugins {
             .add(SpeciesAssetPlugin)
             .add(WaterPlugin)
             .add(SwimmingPlugin)
+            .add(SchoolPlugin)
             .add(InterpolationPlugin)
             .add(SlicePlugin)
             .add(TankWaterPlugin)

@@ -26,6 +26,9 @@ pub enum JellyfishSystems {
     RebuildMeshes,
     /// PostUpdate: materials made, updated after edits and put on new meshes.
     Materials,
+    /// FixedUpdate: schools set their members' headings (steer your own before
+    /// `StepSlices` too, in any schedule before `PostUpdate`).
+    SteerSchools,
     /// FixedUpdate: the tank's water steps, taking the jets gathered since the last tick.
     StepWater,
     /// FixedUpdate: the jellyfish's jets are gathered for the next tick of the water.

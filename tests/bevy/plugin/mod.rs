@@ -27,6 +27,7 @@ use std::time::Duration;
 mod debug;
 mod detail;
 mod lifecycle;
+mod school;
 mod species;
 mod surfaces;
 mod time;

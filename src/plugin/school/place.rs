@@ -1,0 +1,152 @@
+//! Filling a school: once its species has loaded, members placed apart in its box.
+
+use super::{JellyfishSchool, MemberOf, SchoolMembers, Swimmer, member};
+use crate::species::Species;
+use bevy::prelude::*;
+
+/// Rejection tries at one spacing before the spacing is relaxed by a tenth.
+const TRIES: usize = 300;
+
+/// A small deterministic generator (SplitMix64): the same school from the same seed.
+pub(super) struct SplitMix(u64);
+
+impl SplitMix {
+    pub(super) fn new(seed: u64) -> Self {
+        Self(seed ^ 0x6a09_e667_f3bc_c908)
+    }
+
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    pub(super) fn next_u32(&mut self) -> u32 {
+        (self.next() >> 32) as u32
+    }
+
+    /// Uniform in [0, 1).
+    pub(super) fn unit(&mut self) -> f32 {
+        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// Uniform in [-1, 1).
+    fn signed(&mut self) -> f32 {
+        2.0 * self.unit() - 1.0
+    }
+}
+
+/// How far a jellyfish of `species` at `scale` reaches from its centre: its bell and half
+/// its longest hanging part (a neighbour's fringe may brush it, not its bell).
+pub(super) fn reach(species: &Species, scale: f32) -> f32 {
+    let hanging = species
+        .tentacle_length
+        .max(species.manubrium_length + species.oral_arm_length);
+    scale * (0.5 * species.diameter + 0.5 * hanging)
+}
+
+/// Spawns the members of every school that is new or changed and whose species has
+/// loaded, despawning the members it had. Places are drawn in the box and kept at least
+/// two reaches apart, within the school and from every member of the other schools (the
+/// spacing relaxed by a tenth after each [`TRIES`] failures).
+pub(super) fn fill_schools(
+    mut commands: Commands,
+    schools: Query<(
+        Entity,
+        Ref<JellyfishSchool>,
+        &Transform,
+        Option<&SchoolMembers>,
+    )>,
+    others: Query<(&Transform, &Swimmer, &MemberOf)>,
+    species: Res<Assets<Species>>,
+    mut waiting: Local<Vec<Entity>>,
+) {
+    let mut due: Vec<Entity> = schools
+        .iter()
+        .filter(|(_, school, ..)| school.is_changed())
+        .map(|(e, ..)| e)
+        .chain(waiting.drain(..))
+        .collect();
+    due.sort_unstable();
+    due.dedup();
+    // Everyone who stays: members of the schools not spawned again.
+    let mut kept: Vec<(Vec3, f32)> = others
+        .iter()
+        .filter(|(.., of)| due.binary_search(&of.0).is_err())
+        .map(|(t, s, _)| (t.translation, s.radius))
+        .collect();
+    kept.sort_by(|a, b| {
+        a.0.to_array()
+            .partial_cmp(&b.0.to_array())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut placed: Vec<(Vec3, f32)> = Vec::new();
+    for entity in due {
+        let Ok((entity, spec, transform, members)) = schools.get(entity) else {
+            continue;
+        };
+        let Some(kind) = species.get(&spec.species) else {
+            waiting.push(entity);
+            continue;
+        };
+        if let Some(members) = members {
+            for m in members.entities() {
+                commands.entity(*m).despawn();
+            }
+        }
+        let mut rng = SplitMix::new(spec.seed);
+        let scale = spec.scale.max(1e-6);
+        for _ in 0..spec.count {
+            let size = scale * (1.0 + spec.size_spread.clamp(0.0, 0.9) * rng.signed());
+            let radius = reach(kind, size);
+            let at = place(
+                &mut rng,
+                spec.half_extents,
+                radius,
+                transform,
+                |p, spacing| {
+                    kept.iter()
+                        .chain(&placed)
+                        .all(|(q, rq)| p.distance(*q) >= spacing * (radius + rq))
+                },
+            );
+            placed.push((at, radius));
+            // Mostly upright in the school's frame, leaning up to ~25 degrees.
+            let lean = Quat::from_rotation_y(std::f32::consts::TAU * rng.unit())
+                * Quat::from_rotation_x(0.45 * rng.unit());
+            let rotation = transform.rotation * lean;
+            commands.spawn(member(entity, &spec, at, rotation, size, radius, &mut rng));
+        }
+        // Members of schools filled later in this frame keep clear of these too.
+        kept.append(&mut placed);
+    }
+}
+
+/// A world point in the school's box (its centre and orientation the school's; its scale
+/// not used), at least a reach from its walls, where `clear` holds at a spacing factor
+/// (1, relaxed by a tenth after each [`TRIES`] failures).
+fn place(
+    rng: &mut SplitMix,
+    half: Vec3,
+    radius: f32,
+    school: &Transform,
+    clear: impl Fn(Vec3, f32) -> bool,
+) -> Vec3 {
+    let inner = (half - Vec3::splat(radius)).max(0.1 * half.abs());
+    let mut spacing = 1.0;
+    loop {
+        for _ in 0..TRIES {
+            let local = Vec3::new(rng.signed(), rng.signed(), rng.signed()) * inner;
+            let at = school.translation + school.rotation * local;
+            if clear(at, spacing) {
+                return at;
+            }
+        }
+        spacing *= 0.9;
+        if spacing < 1e-3 {
+            return school.translation;
+        }
+    }
+}

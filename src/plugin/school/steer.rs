@@ -1,0 +1,74 @@
+//! Steering a school: each member heads along a slow wander of its own, bent back from
+//! the walls of its school's box and away from close neighbours of any school. Decided in
+//! fixed ticks, so a replay steers the same; the plugin turns a jellyfish only while it
+//! strokes.
+
+use super::{JellyfishSchool, MemberOf, Swimmer};
+use crate::plugin::swimming::{Steering, SteeringTarget, SwimMotion};
+use bevy::prelude::*;
+
+/// The walls push from this many reaches away.
+const WALL_REACH: f32 = 3.0;
+/// Neighbours push from this factor of the two reaches apart.
+const NEIGHBOUR_REACH: f32 = 1.3;
+/// How much more the walls and neighbours count than the wander.
+const PUSH: f32 = 3.0;
+
+/// Sets every member's heading.
+pub(super) fn steer_schools(
+    time: Res<Time<Fixed>>,
+    schools: Query<(&JellyfishSchool, &Transform)>,
+    mut members: Query<(&MemberOf, &Swimmer, &SwimMotion, &mut Steering)>,
+) {
+    let t = time.elapsed_secs();
+    // Where they are in the simulation (not where the last frame drew them), in one order
+    // every run.
+    let mut all: Vec<(Vec3, f32)> = members
+        .iter()
+        .map(|(_, s, motion, _)| (motion.pose.position, s.radius))
+        .collect();
+    all.sort_by(|a, b| {
+        a.0.to_array()
+            .partial_cmp(&b.0.to_array())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for (of, swimmer, motion, mut steering) in &mut members {
+        let Ok((school, frame)) = schools.get(of.0) else {
+            continue;
+        };
+        let p = motion.pose.position;
+        let w = swimmer.wander;
+        let wander = frame.rotation
+            * Vec3::new(
+                0.6 * (0.11 * t + w.x).sin(),
+                1.0 + 0.5 * (0.07 * t + w.y).sin(),
+                0.6 * (0.09 * t + w.z).cos(),
+            );
+        let mut push = walls(p, school, frame, swimmer.radius);
+        for (q, rq) in &all {
+            let d = p - *q;
+            let reach = NEIGHBOUR_REACH * (swimmer.radius + rq);
+            let len = d.length();
+            if len > 1e-6 && len < reach {
+                push += d / len * (1.0 - len / reach);
+            }
+        }
+        let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
+        steering.target = SteeringTarget::Heading(desired);
+    }
+}
+
+/// The push back from the box's walls at `p`, world: zero until [`WALL_REACH`] reaches
+/// from a wall, one at a reach from it, more beyond (outside the box).
+fn walls(p: Vec3, school: &JellyfishSchool, frame: &Transform, radius: f32) -> Vec3 {
+    let local = frame.rotation.inverse() * (p - frame.translation);
+    let margin = (WALL_REACH * radius).max(1e-6);
+    let near = |d: f32| ((margin - d) / (margin - radius).max(1e-6)).clamp(0.0, 2.0);
+    let h = school.half_extents;
+    let push = Vec3::new(
+        near(h.x + local.x) - near(h.x - local.x),
+        near(h.y + local.y) - near(h.y - local.y),
+        near(h.z + local.z) - near(h.z - local.z),
+    );
+    frame.rotation * push
+}

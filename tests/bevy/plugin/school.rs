@@ -1,0 +1,130 @@
+//! Schools (`JellyfishSchool`): members spawned apart in the box, kept inside by steering,
+//! despawned with the school, spawned again when it changes.
+
+use super::*;
+use bevy::ecs::hierarchy::ChildOf;
+use bevy_jellyfish::plugin::{JellyfishSchool, SchoolMembers, SwimMotion};
+
+fn school_app(count: usize, half: Vec3) -> (App, Entity) {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    let school = app
+        .world_mut()
+        .spawn((
+            JellyfishSchool::new(h, count, half).with_seed(7),
+            Transform::from_xyz(0.0, 5.0, 0.0),
+        ))
+        .id();
+    (app, school)
+}
+
+fn members(app: &App, school: Entity) -> Vec<Entity> {
+    app.world()
+        .get::<SchoolMembers>(school)
+        .map_or(Vec::new(), |m| m.entities().to_vec())
+}
+
+/// Whether `p` is in the box of half `half` around (0, 5, 0), grown by `margin`.
+fn inside(p: Vec3, half: Vec3, margin: f32) -> bool {
+    ((p - Vec3::new(0.0, 5.0, 0.0)).abs() - half - Vec3::splat(margin)).max_element() <= 0.0
+}
+
+#[test]
+fn a_school_spawns_its_members_apart_in_its_box_and_not_as_children() {
+    let half = Vec3::new(4.0, 3.0, 4.0);
+    let (mut app, school) = school_app(12, half);
+    run(&mut app, 3);
+    let members = members(&app, school);
+    assert_eq!(members.len(), 12);
+    let diameter = species().diameter * 20.0;
+    let mut seeds = Vec::new();
+    let mut places = Vec::new();
+    for &m in &members {
+        assert!(
+            app.world().get::<ChildOf>(m).is_none(),
+            "a member is not a child"
+        );
+        let j = app.world().get::<Jellyfish>(m).unwrap();
+        seeds.push(j.seed.expect("each member has its own seed"));
+        let t = app.world().get::<Transform>(m).unwrap();
+        assert!(
+            inside(t.translation, half, 0.0),
+            "{:?} outside",
+            t.translation
+        );
+        places.push(t.translation);
+    }
+    seeds.sort_unstable();
+    seeds.dedup();
+    assert_eq!(seeds.len(), 12, "seeds differ");
+    for (i, a) in places.iter().enumerate() {
+        for b in &places[i + 1..] {
+            // Bells at most 15% larger than the species' at scale 20 do not overlap.
+            assert!(a.distance(*b) >= 1.15 * diameter, "{a} and {b} overlap");
+        }
+    }
+}
+
+#[test]
+fn members_stay_in_the_box_by_steering_never_by_jumping() {
+    // A box a few bells wide: without steering they would swim out in seconds.
+    let half = Vec3::splat(2.5);
+    let (mut app, school) = school_app(6, half);
+    run(&mut app, 3);
+    let members = members(&app, school);
+    let reach = |app: &App, m: Entity| app.world().get::<SwimMotion>(m).unwrap().pose.position;
+    let mut last: Vec<Vec3> = members.iter().map(|&m| reach(&app, m)).collect();
+    let (mut fastest, mut farthest) = (0.0f32, f32::MIN);
+    for _ in 0..30 * 60 {
+        app.update();
+        for (k, &m) in members.iter().enumerate() {
+            let p = reach(&app, m);
+            fastest = fastest.max(p.distance(last[k]));
+            let out = ((p - Vec3::new(0.0, 5.0, 0.0)).abs() - half).max_element();
+            farthest = farthest.max(out);
+            last[k] = p;
+        }
+    }
+    // A moon jelly surges at most a few centimetres a second: ~0.02 units a frame.
+    assert!(fastest < 0.05, "a member jumped {fastest} units in a frame");
+    assert!(
+        farthest < 0.8,
+        "members left the box by {farthest} units (a bell and fringe is ~0.7)"
+    );
+}
+
+#[test]
+fn despawning_the_school_despawns_its_members() {
+    let (mut app, school) = school_app(5, Vec3::splat(3.0));
+    run(&mut app, 3);
+    let members = members(&app, school);
+    assert_eq!(members.len(), 5);
+    app.world_mut().despawn(school);
+    run(&mut app, 1);
+    for m in members {
+        assert!(
+            app.world().get_entity(m).is_err(),
+            "member {m} outlived its school"
+        );
+    }
+}
+
+#[test]
+fn a_changed_school_is_spawned_again() {
+    let (mut app, school) = school_app(5, Vec3::splat(3.0));
+    run(&mut app, 3);
+    let before = members(&app, school);
+    app.world_mut()
+        .get_mut::<JellyfishSchool>(school)
+        .unwrap()
+        .count = 3;
+    run(&mut app, 2);
+    let after = members(&app, school);
+    assert_eq!(after.len(), 3);
+    for m in before {
+        assert!(
+            app.world().get_entity(m).is_err(),
+            "the old member {m} is gone"
+        );
+    }
+}
