@@ -213,7 +213,7 @@ fn load_species(app: &mut App) -> Result<Vec<Handle<Species>>, String> {
     let server = app.world().resource::<AssetServer>().clone();
     let handles: Vec<Handle<Species>> = crate::school::SPECIES
         .iter()
-        .map(|(name, _)| server.load(format!("species/{name}.species.ron")))
+        .map(|name| server.load(format!("species/{name}.species.ron")))
         .collect();
     let start = Instant::now();
     loop {

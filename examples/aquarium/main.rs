@@ -263,7 +263,7 @@ fn task_pools(threads: Option<usize>) -> TaskPoolPlugin {
 /// The species files the schools load: a missing one is said at once, with the path and
 /// the fix, instead of an empty tank.
 fn species_files_present() -> Result<(), String> {
-    for (name, _) in school::SPECIES {
+    for name in school::SPECIES {
         common::find_species_file(name, "aquarium")?;
     }
     Ok(())

@@ -7,11 +7,11 @@
 //! 10 % + 8 MB (soaks of two minutes or more), if anything went non-finite, or if the
 //! last valid file did not apply.
 
-use crate::school::{SPECIES, School, Swimmer, member, place};
+use crate::school::{SCALE, SPECIES, School, water_box};
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::{JellyfishSlice, SliceRecovered, TankWater};
-use bevy_jellyfish::{JellyfishSettings, Species};
+use bevy_jellyfish::plugin::{JellyfishSlice, SliceRecovered, Steering, TankWater};
+use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use std::path::{Path, PathBuf};
@@ -130,7 +130,7 @@ impl AssetCopy {
         let root = std::env::temp_dir().join(format!("jellyfish-soak-{}", std::process::id()));
         let species = root.join("species");
         std::fs::create_dir_all(&species).map_err(|e| format!("{}: {e}", species.display()))?;
-        for (name, _) in SPECIES {
+        for name in SPECIES {
             let from = crate::common::find_species_file(name, "aquarium")?;
             let to = species.join(format!("{name}.species.ron"));
             std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", to.display()))?;
@@ -188,17 +188,18 @@ fn broken(text: &str, second: u64) -> String {
 /// Jellyfish whose transform is not finite, this frame.
 fn count_non_finite(app: &mut App) -> u64 {
     app.world_mut()
-        .query_filtered::<&Transform, With<Swimmer>>()
+        .query_filtered::<&Transform, With<Jellyfish>>()
         .iter(app.world())
         .filter(|t| !(t.translation.is_finite() && t.rotation.is_finite()))
         .count() as u64
 }
 
-/// Despawns about 5 % of the school and spawns as many, of random species and places.
+/// Despawns about 5 % of the jellyfish and spawns as many, of random species and places,
+/// heading up (newcomers swim on their own, outside the schools).
 fn churn(app: &mut App, rng: &mut StdRng) {
     let mut swimmers: Vec<Entity> = app
         .world_mut()
-        .query_filtered::<Entity, With<Swimmer>>()
+        .query_filtered::<Entity, With<Jellyfish>>()
         .iter(app.world())
         .collect();
     swimmers.sort_unstable();
@@ -209,10 +210,14 @@ fn churn(app: &mut App, rng: &mut StdRng) {
     }
     let server = app.world().resource::<AssetServer>().clone();
     for _ in 0..replaced {
-        let (name, radius) = SPECIES[rng.random_range(0..SPECIES.len())];
-        let at = place(rng);
-        let bundle = member(&server, name, radius, at, rng);
-        app.world_mut().spawn(bundle);
+        let name = SPECIES[rng.random_range(0..SPECIES.len())];
+        let species: Handle<Species> = server.load(format!("species/{name}.species.ron"));
+        let at = somewhere(rng);
+        app.world_mut().spawn((
+            Jellyfish::new(species).with_seed(rng.random()),
+            Steering::heading(Vec3::Y),
+            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
+        ));
     }
 }
 
@@ -233,9 +238,15 @@ fn edit_species(app: &mut App, second: u64) {
     }
 }
 
+/// A random place in the schools' water.
+fn somewhere(rng: &mut StdRng) -> Vec3 {
+    let (centre, half) = water_box();
+    centre + Vec3::from_array(rng.random::<[f32; 3]>().map(|u| 2.0 * u - 1.0)) * half
+}
+
 /// A stir somewhere in the tank.
 fn stir(app: &mut App, rng: &mut StdRng) {
-    let at = place(rng);
+    let at = somewhere(rng);
     let velocity = Vec3::from_array(rng.random::<[f32; 3]>()) * 2.0 - 1.0;
     app.world_mut()
         .resource_mut::<TankWater>()

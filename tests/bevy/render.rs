@@ -19,9 +19,7 @@ use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode, SurfacePath,
 };
-use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics};
-use rand::SeedableRng;
-use rand::rngs::StdRng;
+use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -312,6 +310,14 @@ fn schools_stay_in_the_tank() {
             seed: 11,
         });
     });
+    // The schools fill once their species have loaded.
+    for _ in 0..300 {
+        app.update();
+        let mut jellyfish = app.world_mut().query_filtered::<(), With<Jellyfish>>();
+        if jellyfish.iter(app.world()).count() == 6 {
+            break;
+        }
+    }
     let (mut last, mut path) = (Vec::new(), vec![0.0f32; 6]);
     for frame in 0..30 * 90 {
         app.update();
@@ -340,19 +346,41 @@ fn schools_stay_in_the_tank() {
     );
 }
 
-/// The default school (six of each species) is placed without overlap, inside the tank.
+/// The default schools (six of each species) are placed without overlap, bells apart
+/// across the schools too, inside the tank.
 #[test]
 fn schools_are_placed_apart() {
-    let radii: Vec<f32> = school::SPECIES.iter().flat_map(|(_, r)| [*r; 6]).collect();
-    for seed in 0..20 {
-        let at = school::positions(&radii, &mut StdRng::seed_from_u64(seed));
-        for (i, (p, rp)) in at.iter().zip(&radii).enumerate() {
+    for seed in 0..3 {
+        let mut app = Headless::default().build(|app| {
+            app.add_plugins(school::plugin).insert_resource(School {
+                per_species: 6,
+                seed,
+            });
+        });
+        let mut bells: Vec<(Vec3, f32)> = Vec::new();
+        for _ in 0..300 {
+            app.update();
+            let mut q = app.world_mut().query::<(&Transform, &Jellyfish)>();
+            let species = app.world().resource::<Assets<Species>>();
+            bells = q
+                .iter(app.world())
+                .filter_map(|(t, j)| {
+                    let s = species.get(&j.species)?;
+                    Some((t.translation, 0.5 * s.diameter * t.scale.max_element()))
+                })
+                .collect();
+            if bells.len() == 18 {
+                break;
+            }
+        }
+        assert_eq!(bells.len(), 18, "seed {seed}: every school filled");
+        for (i, (p, rp)) in bells.iter().enumerate() {
             assert!(p.x.abs() < tank::HALF_WIDTH && p.z.abs() < tank::HALF_DEPTH);
             assert!((0.0..tank::SURFACE).contains(&p.y));
-            for (q, rq) in at[..i].iter().zip(&radii) {
+            for (q, rq) in &bells[..i] {
                 assert!(
                     p.distance(*q) >= rp + rq,
-                    "seed {seed}: {p} and {q} overlap"
+                    "seed {seed}: bells at {p} and {q} overlap"
                 );
             }
         }
