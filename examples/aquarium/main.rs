@@ -116,6 +116,20 @@ impl Args {
         }
     }
 
+    /// The settings of the headless runs (bench and soak). Headless, `Auto` would mean CPU
+    /// meshes; the windowed app on a GPU that can uses templates, so that is what they
+    /// run by default.
+    fn headless(&self) -> JellyfishSettings {
+        JellyfishSettings {
+            surfaces: match self.surfaces {
+                SurfaceMode::Auto => SurfaceMode::Templates,
+                chosen => chosen,
+            },
+            detail: self.detail(),
+            ..scene::settings()
+        }
+    }
+
     fn detail(&self) -> DetailLevels {
         DetailLevels {
             near: self.near,
@@ -166,34 +180,20 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     }
     let result = if let Some(seconds) = args.soak {
-        let settings = JellyfishSettings {
-            // As in the bench: what the window uses on a GPU that can.
-            surfaces: match args.surfaces {
-                SurfaceMode::Auto => SurfaceMode::Templates,
-                chosen => chosen,
-            },
-            detail: args.detail(),
-            ..scene::settings()
-        };
-        soak::run(args.school(), seconds, settings, task_pools(args.threads))
-            .map_err(|e| format!("aquarium --soak: {e}"))
+        soak::run(
+            args.school(),
+            seconds,
+            args.headless(),
+            task_pools(args.threads),
+        )
+        .map_err(|e| format!("aquarium --soak: {e}"))
     } else if args.bench {
-        let settings = JellyfishSettings {
-            // Headless, Auto would mean CPU meshes; the windowed app on a GPU that can
-            // uses templates, so that is what the bench measures by default.
-            surfaces: match args.surfaces {
-                SurfaceMode::Auto => SurfaceMode::Templates,
-                chosen => chosen,
-            },
-            detail: args.detail(),
-            ..scene::settings()
-        };
         let frames = args.frames.unwrap_or(600);
         bench::run(
             args.school(),
             frames,
             args.fps,
-            settings,
+            args.headless(),
             task_pools(args.threads),
         )
         .map_err(|e| format!("aquarium --bench: {e}"))
