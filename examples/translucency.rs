@@ -45,7 +45,16 @@ fn main() {
         args.get(i + 1).cloned()
     };
     let still = args.iter().any(|a| a == "--still");
-    let frames: usize = value("--frames").map_or(48, |f| f.parse().expect("--frames: a count"));
+    // A frame is judged against the mean of its two neighbours: three at least.
+    let frames = match value("--frames").map_or(Ok(48), |f| f.parse::<usize>()) {
+        Ok(n) if n >= 3 => n,
+        _ => {
+            eprintln!(
+                "translucency: --frames takes a count of 3 or more (a frame is judged against its two neighbours)"
+            );
+            std::process::exit(2)
+        }
+    };
     let out = value("--out").map(PathBuf::from);
     let mut offscreen = Offscreen::new(WIDTH, HEIGHT, |app| {
         app.add_plugins(JellyfishPlugin::default());
