@@ -48,10 +48,12 @@ impl MuscleDrive {
             return 1.0 - depth * hermite(phi / self.duty);
         }
         let window = 1.0 - self.duty;
-        // A staggered spring starts later and ends no later than the next contraction.
+        // A staggered spring starts later and ends no later than the next contraction:
+        // the margin waits `delay` of the window and relaxes over the rest of it. (Written
+        // so that the paper's span, a half, gives its drive to the last bit.)
         let lag = self.stagger * level.clamp(0.0, 1.0);
-        let delay = STAGGER_DELAY * lag * (1.0 - self.span);
-        let start = self.duty + window * delay;
+        let delay = STAGGER_DELAY * (1.0 - self.span);
+        let start = self.duty + window * delay * lag;
         let length = window * (self.span + (1.0 - self.span - delay) * lag);
         if phi < start {
             self.ratio
