@@ -18,11 +18,6 @@ const GLASS: f32 = 1.0;
 const FLOOR: f32 = 2.0;
 /// …and below the surface by this much.
 const TOP: f32 = 1.0;
-/// Radians turned per bell diameter surged while contracting: twice the plugin's default,
-/// so a school turns away from the glass within two or three strokes.
-const AGILITY: f32 = 6.0;
-/// Members' sizes vary by up to this fraction either way.
-const SIZE_SPREAD: f32 = 0.15;
 
 /// How many jellyfish of each species; changing it respawns the schools.
 #[derive(Resource, Clone, Copy, Debug)]
@@ -62,10 +57,10 @@ fn respawn(
     for (k, name) in SPECIES.iter().enumerate() {
         let species: Handle<Species> = assets.load(format!("species/{name}.species.ron"));
         commands.spawn((
+            // The library's school: sizes within ±15 %, turning twice as sharply as a lone
+            // jellyfish (away from the glass within two or three strokes).
             JellyfishSchool {
                 scale: SCALE,
-                size_spread: SIZE_SPREAD,
-                agility: AGILITY,
                 ..JellyfishSchool::new(species, school.per_species, half)
                     .with_seed(u64::from(school.seed) * 3 + k as u64)
             },

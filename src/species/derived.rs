@@ -14,6 +14,13 @@ impl Species {
         self.domain_diameters * self.diameter
     }
 
+    /// The longest part hanging below the bell at rest, m: the tentacles, or the manubrium
+    /// with its oral arms.
+    pub fn hanging_length(&self) -> f32 {
+        self.tentacle_length
+            .max(self.manubrium_length + self.oral_arm_length)
+    }
+
     /// Kinematic viscosity, m²/s.
     pub fn kinematic_viscosity(&self) -> f32 {
         self.viscosity / self.density

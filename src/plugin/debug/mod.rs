@@ -116,9 +116,7 @@ fn draw_reach(
         let Some(species) = slice.species() else {
             continue;
         };
-        let hanging = species
-            .tentacle_length
-            .max(species.manubrium_length + species.oral_arm_length);
+        let hanging = species.hanging_length();
         let local = 0.5 * species.diameter + hanging;
         let (scale, rotation, centre) = global.to_scale_rotation_translation();
         let isometry = Isometry3d::new(centre, rotation);

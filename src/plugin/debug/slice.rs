@@ -37,12 +37,12 @@ pub(super) fn draw_slices(
     time: Res<Time>,
     mut jellyfish: Query<(&JellyfishSlice, &GlobalTransform, &mut TraceParticles), With<ShowSlice>>,
 ) {
+    let config = gizmos.config_ext.clone();
     for (slice, global, mut particles) in &mut jellyfish {
         let Some(sim) = slice.sim() else {
             continue;
         };
         let world = |p: Vec2| global.transform_point(slice.to_local(p));
-        let config = gizmos.config_ext.clone();
         if config.flow {
             draw_flow(&mut gizmos, sim, &world);
         }

@@ -123,6 +123,13 @@ pub(crate) struct Swimmer {
     radius: f32,
 }
 
+/// Members by place, x then y then z: one order every run, whatever the entities.
+fn by_position(a: &(Vec3, f32), b: &(Vec3, f32)) -> std::cmp::Ordering {
+    a.0.to_array()
+        .partial_cmp(&b.0.to_array())
+        .unwrap_or(std::cmp::Ordering::Equal)
+}
+
 /// One member as spawned: a jellyfish of the school's species at `at` (world), upright
 /// with a lean, at `scale`.
 fn member(

@@ -41,9 +41,7 @@ impl SplitMix {
 /// How far a jellyfish of `species` at `scale` reaches from its centre: its bell and half
 /// its longest hanging part (a neighbour's fringe may brush it, not its bell).
 pub(super) fn reach(species: &Species, scale: f32) -> f32 {
-    let hanging = species
-        .tentacle_length
-        .max(species.manubrium_length + species.oral_arm_length);
+    let hanging = species.hanging_length();
     scale * (0.5 * species.diameter + 0.5 * hanging)
 }
 
@@ -77,11 +75,7 @@ pub(super) fn fill_schools(
         .filter(|(.., of)| due.binary_search(&of.0).is_err())
         .map(|(t, s, _)| (t.translation, s.radius))
         .collect();
-    kept.sort_by(|a, b| {
-        a.0.to_array()
-            .partial_cmp(&b.0.to_array())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
+    kept.sort_by(super::by_position);
     let mut placed: Vec<(Vec3, f32)> = Vec::new();
     for entity in due {
         let Ok((entity, spec, transform, members)) = schools.get(entity) else {

@@ -27,11 +27,7 @@ pub(super) fn steer_schools(
         .iter()
         .map(|(_, s, motion, _)| (motion.pose.position, s.radius))
         .collect();
-    all.sort_by(|a, b| {
-        a.0.to_array()
-            .partial_cmp(&b.0.to_array())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
+    all.sort_by(super::by_position);
     for (of, swimmer, motion, mut steering) in &mut members {
         let Ok((school, frame)) = schools.get(of.0) else {
             continue;

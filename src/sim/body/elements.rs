@@ -98,6 +98,27 @@ pub(super) fn spring(points: &[Vec2], a: usize, b: usize, modulus_times_area: f3
     }
 }
 
+/// A muscle between the opposite points `a` and `b`, relaxed at their distance, of
+/// `modulus_times_area` per unit depth, `drive` of which the contraction drives, at `level`.
+pub(super) fn muscle(
+    points: &[Vec2],
+    (a, b): (usize, usize),
+    modulus_times_area: f32,
+    level: f32,
+    drive: f32,
+) -> Muscle {
+    let relaxed = (points[b] - points[a]).length();
+    Muscle {
+        a,
+        b,
+        relaxed,
+        rest: relaxed,
+        stiffness: modulus_times_area / relaxed.max(1e-9),
+        level,
+        drive,
+    }
+}
+
 pub(super) fn hinge(points: &[Vec2], a: usize, b: usize, c: usize, stiffness: f32) -> Hinge {
     Hinge {
         a,

@@ -5,7 +5,7 @@
 
 use super::depth::Depth;
 use super::elements::{
-    Hinge, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge, spring,
+    Hinge, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge, muscle, spring,
 };
 use super::rest_shape::mesoglea_thickness;
 use super::tentacle::tentacle_bending;
@@ -92,16 +92,7 @@ pub(super) fn circumferential_muscles(
             break;
         }
         let j = bell_len - 1 - i;
-        let relaxed = (subumbrella[j] - subumbrella[i]).length();
-        muscles.push(Muscle {
-            a: i,
-            b: j,
-            relaxed,
-            rest: relaxed,
-            stiffness: in_series / relaxed,
-            level,
-            drive: 1.0,
-        });
+        muscles.push(muscle(subumbrella, (i, j), in_series, level, 1.0));
     }
     muscles
 }
@@ -142,16 +133,8 @@ pub(super) fn ring_hoops(
         }
         // The muscle and the hoop in parallel, as one element.
         let fibre = species.muscle_modulus * species.muscle_cross_section * ring;
-        let relaxed = (subumbrella[j] - subumbrella[i]).length();
-        muscles.push(Muscle {
-            a: i,
-            b: j,
-            relaxed,
-            rest: relaxed,
-            stiffness: (fibre + hoop) / relaxed.max(1e-9),
-            level,
-            drive: fibre / (fibre + hoop).max(f32::MIN_POSITIVE),
-        });
+        let drive = fibre / (fibre + hoop).max(f32::MIN_POSITIVE);
+        muscles.push(muscle(subumbrella, (i, j), fibre + hoop, level, drive));
     }
     muscles
 }
