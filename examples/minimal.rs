@@ -23,10 +23,13 @@ fn setup(mut commands: Commands, mut species: ResMut<Assets<Species>>) {
         DirectionalLight::default(),
         Transform::from_xyz(1.0, 3.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    // A moon jelly 4 cm across, drawn 30 times life size; it swims along its local +Y.
+    // A moon jelly 4 cm across, drawn 30 times life size. It swims along its local +Y and
+    // would leave the picture in a few seconds: heading for a point in front of the camera,
+    // it turns a little each stroke and circles there.
     let aurelia = species.add(Species::aurelia());
     commands.spawn((
         Jellyfish::new(aurelia),
+        Steering::towards(Vec3::new(0.0, 1.0, 0.0)),
         Transform::from_xyz(0.0, 0.5, 0.0).with_scale(Vec3::splat(30.0)),
     ));
 }

@@ -4,11 +4,16 @@
 #![allow(dead_code)] // each example that includes it uses a part
 
 use bevy_jellyfish::Species;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-/// `assets/species/*.species.ron`, sorted by name.
+/// `assets/species/*.species.ron`, sorted by name, under `BEVY_ASSET_ROOT` where it is set
+/// (as the windowed examples read it: a binary run away from its checkout) and else under
+/// this crate.
 pub fn species_files() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/species");
+    let root = std::env::var_os("BEVY_ASSET_ROOT")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    let dir = root.join("assets/species");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .filter_map(|e| e.ok().map(|e| e.path()))
