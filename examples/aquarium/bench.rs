@@ -170,6 +170,9 @@ pub fn start_schools(app: &mut App, school: School) -> Result<Vec<Handle<Species
 /// Frames until every jellyfish of `school` has its slice; errors if they never do.
 pub fn until_started(app: &mut App, school: School) -> Result<usize, String> {
     let expected = (school.per_species * crate::school::SPECIES.len()) as f64;
+    // Slices start a few dozen a frame, and a frame of ten thousand jellyfish is long:
+    // the wait grows with the school.
+    let timeout = READY_TIMEOUT + Duration::from_secs_f64(0.04 * expected);
     let start = Instant::now();
     let mut frames = 0;
     while count(app) < expected {
@@ -182,12 +185,12 @@ pub fn until_started(app: &mut App, school: School) -> Result<usize, String> {
                  holding assets/"
             ));
         }
-        if start.elapsed() > READY_TIMEOUT {
+        if start.elapsed() > timeout {
             return Err(format!(
                 "only {} of {expected} jellyfish started in {} s: do the species files in \
                  {}/assets/species load?",
                 count(app),
-                READY_TIMEOUT.as_secs(),
+                timeout.as_secs(),
                 std::env::current_dir().map_or("?".into(), |d| d.display().to_string()),
             ));
         }

@@ -21,6 +21,7 @@
 //!     .run();
 //! ```
 
+mod grid;
 mod place;
 mod steer;
 

@@ -1,5 +1,6 @@
 //! Filling a school: once its species has loaded, members placed apart in its box.
 
+use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, SchoolMembers, Swimmer, member};
 use crate::species::Species;
 use bevy::prelude::*;
@@ -76,7 +77,13 @@ pub(super) fn fill_schools(
         .map(|(t, s, _)| (t.translation, s.radius))
         .collect();
     kept.sort_by(super::by_position);
-    let mut placed: Vec<(Vec3, f32)> = Vec::new();
+    // Everyone kept or placed, in a grid to find the near ones: a school of thousands is
+    // placed in a frame, not in minutes.
+    let mut grid = Neighbours::new(cube_for(&kept, &due, &schools, &species));
+    for (i, (p, _)) in kept.iter().enumerate() {
+        grid.insert(i, *p);
+    }
+    let mut widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
     for entity in due {
         let Ok((entity, spec, transform, members)) = schools.get(entity) else {
             continue;
@@ -101,21 +108,49 @@ pub(super) fn fill_schools(
                 radius,
                 transform,
                 |p, spacing| {
-                    kept.iter()
-                        .chain(&placed)
-                        .all(|(q, rq)| p.distance(*q) >= spacing * (radius + rq))
+                    let mut clear = true;
+                    grid.around(p, spacing * (radius + widest), |i| {
+                        let (q, rq) = kept[i];
+                        clear &= p.distance(q) >= spacing * (radius + rq);
+                    });
+                    clear
                 },
             );
-            placed.push((at, radius));
+            grid.insert(kept.len(), at);
+            kept.push((at, radius));
+            widest = widest.max(radius);
             // Mostly upright in the school's frame, leaning up to ~25 degrees.
             let lean = Quat::from_rotation_y(std::f32::consts::TAU * rng.unit())
                 * Quat::from_rotation_x(0.45 * rng.unit());
             let rotation = transform.rotation * lean;
             commands.spawn(member(entity, &spec, at, rotation, size, radius, &mut rng));
         }
-        // Members of schools filled later in this frame keep clear of these too.
-        kept.append(&mut placed);
     }
+}
+
+/// The grid's cube: twice the widest reach of anyone kept or about to be placed, so that
+/// a query looks at the cubes next to its own.
+fn cube_for(
+    kept: &[(Vec3, f32)],
+    due: &[Entity],
+    schools: &Query<(
+        Entity,
+        Ref<JellyfishSchool>,
+        &Transform,
+        Option<&SchoolMembers>,
+    )>,
+    species: &Assets<Species>,
+) -> f32 {
+    let coming = due.iter().filter_map(|e| {
+        let (_, spec, ..) = schools.get(*e).ok()?;
+        let largest = spec.scale.max(1e-6) * (1.0 + spec.size_spread.clamp(0.0, 0.9));
+        Some(reach(species.get(&spec.species)?, largest))
+    });
+    2.0 * kept
+        .iter()
+        .map(|(_, r)| *r)
+        .chain(coming)
+        .fold(0.0, f32::max)
 }
 
 /// A world point in the school's box (its centre and orientation the school's; its scale

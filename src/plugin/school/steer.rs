@@ -3,6 +3,7 @@
 //! fixed ticks, so a replay steers the same; the plugin turns a jellyfish only while it
 //! strokes.
 
+use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, Swimmer};
 use crate::plugin::swimming::{Steering, SteeringTarget, SwimMotion};
 use bevy::prelude::*;
@@ -28,6 +29,9 @@ pub(super) fn steer_schools(
         .map(|(_, s, motion, _)| (motion.pose.position, s.radius))
         .collect();
     all.sort_by(super::by_position);
+    let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
+    let grid = Neighbours::of(&all, NEIGHBOUR_REACH * widest);
+    let mut near: Vec<usize> = Vec::new();
     for (of, swimmer, motion, mut steering) in &mut members {
         let Ok((school, frame)) = schools.get(of.0) else {
             continue;
@@ -41,17 +45,31 @@ pub(super) fn steer_schools(
                 0.6 * (0.09 * t + w.z).cos(),
             );
         let mut push = walls(p, school, frame, swimmer.radius);
-        for (q, rq) in &all {
-            let d = p - *q;
-            let reach = NEIGHBOUR_REACH * (swimmer.radius + rq);
-            let len = d.length();
-            if len > 1e-6 && len < reach {
-                push += d / len * (1.0 - len / reach);
+        // Those within reach, summed in the order of `all`: the same sum, to the bit, as a
+        // pass over everyone.
+        near.clear();
+        let range = NEIGHBOUR_REACH * (swimmer.radius + widest);
+        grid.around(p, range, |i| {
+            if pushes(p, swimmer.radius, all[i]).is_some() {
+                near.push(i);
             }
+        });
+        near.sort_unstable();
+        for &i in &near {
+            push += pushes(p, swimmer.radius, all[i]).unwrap_or(Vec3::ZERO);
         }
         let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
         steering.target = SteeringTarget::Heading(desired);
     }
+}
+
+/// The push on a member at `p` of `radius` from a neighbour at `q` of `rq`, if it is
+/// within reach (and not the member itself): one at contact, none at the reach.
+fn pushes(p: Vec3, radius: f32, (q, rq): (Vec3, f32)) -> Option<Vec3> {
+    let d = p - q;
+    let reach = NEIGHBOUR_REACH * (radius + rq);
+    let len = d.length();
+    (len > 1e-6 && len < reach).then(|| d / len * (1.0 - len / reach))
 }
 
 /// The push back from the box's walls at `p`, world: zero until [`WALL_REACH`] reaches
