@@ -31,7 +31,7 @@ pub(super) fn steer_schools(
     all.sort_by(super::by_position);
     let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
     let grid = Neighbours::of(&all, NEIGHBOUR_REACH * widest);
-    let mut near: Vec<usize> = Vec::new();
+    let mut near: Vec<(usize, Vec3)> = Vec::new();
     for (of, swimmer, motion, mut steering) in &mut members {
         let Ok((school, frame)) = schools.get(of.0) else {
             continue;
@@ -50,13 +50,13 @@ pub(super) fn steer_schools(
         near.clear();
         let range = NEIGHBOUR_REACH * (swimmer.radius + widest);
         grid.around(p, range, |i| {
-            if pushes(p, swimmer.radius, all[i]).is_some() {
-                near.push(i);
+            if let Some(away) = pushes(p, swimmer.radius, all[i]) {
+                near.push((i, away));
             }
         });
-        near.sort_unstable();
-        for &i in &near {
-            push += pushes(p, swimmer.radius, all[i]).unwrap_or(Vec3::ZERO);
+        near.sort_unstable_by_key(|(i, _)| *i);
+        for (_, away) in &near {
+            push += *away;
         }
         let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
         steering.target = SteeringTarget::Heading(desired);
