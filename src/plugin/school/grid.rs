@@ -15,7 +15,7 @@ pub(super) struct Neighbours {
 impl Neighbours {
     /// An empty grid of cubes of side `cell` (world units; a typical query's range keeps
     /// a query to a few cubes).
-    pub(super) fn new(cell: f32) -> Self {
+    fn new(cell: f32) -> Self {
         Self {
             cell: if cell.is_finite() && cell > 1e-6 {
                 cell

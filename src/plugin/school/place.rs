@@ -79,10 +79,7 @@ pub(super) fn fill_schools(
     kept.sort_by(super::by_position);
     // Everyone kept or placed, in a grid to find the near ones: a school of thousands is
     // placed in a frame, not in minutes.
-    let mut grid = Neighbours::new(cube_for(&kept, &due, &schools, &species));
-    for (i, (p, _)) in kept.iter().enumerate() {
-        grid.insert(i, *p);
-    }
+    let mut grid = Neighbours::of(&kept, cube_for(&kept, &due, &schools, &species));
     let mut widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
     for entity in due {
         let Ok((entity, spec, transform, members)) = schools.get(entity) else {
