@@ -116,6 +116,7 @@ pub const SECTIONS: &[Section] = &[
             param!(tentacle_length, "length", " mm", MM, false, Real),
             param!(tentacle_radius, "radius", " mm", MM, true, Real),
             param!(tentacle_length_spread, "length spread", "", 1.0, false, Real),
+            param!(tentacle_guides, "guide chains", "", 1.0, false, Count),
             param!(tentacle_cross_section, "spring cross-section", "", 1.0, true, Real),
         ],
     },

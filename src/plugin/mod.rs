@@ -88,7 +88,9 @@ pub use slice::{
     JellyfishSlice, JellyfishStarted, SlicePlugin, SliceRecovered, StrokeStarted, Tier,
 };
 pub use species_asset::{SpeciesAssetPlugin, SpeciesLoader, SpeciesRejected};
-pub use swimming::{Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin};
+pub use swimming::{
+    Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin, TentacleGuides,
+};
 pub use tank::{TankWater, TankWaterPlugin};
 pub use water::{AmbientWater, SampledWater, WaterField, WaterPlugin};
 

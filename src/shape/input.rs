@@ -65,6 +65,9 @@ pub fn check(view: &SliceView, species: &Species, time: f32) -> Result<(), Shape
             return Err(ShapeError::NonFinitePoint(name));
         }
     }
+    if !view.trail.offsets.iter().all(|d| d.is_finite()) {
+        return Err(ShapeError::NonFinitePoint("trail"));
+    }
     let s = species;
     for (name, v) in [
         ("thickness", s.thickness),

@@ -25,6 +25,8 @@ pub struct Resolution {
     pub tentacles: TentacleLayout,
     /// The manubrium and oral arms ([`oral`]), drawn after the tentacles.
     pub oral: TentacleLayout,
+    /// Guide chains the tentacles bend between (`Species::guide_count`).
+    pub guides: usize,
 }
 
 impl Resolution {
@@ -64,6 +66,7 @@ impl Resolution {
                 sides: ORAL_SIDES,
                 points: rings + 1,
             },
+            guides: species.guide_count().min(16),
         }
     }
 
@@ -200,6 +203,7 @@ pub fn build_at(
     tentacles::write_surface(
         &res.tentacles,
         view.tentacles,
+        &view.trail,
         [view.bell[0], view.bell[n - 1]],
         s.profile.margin(),
         species.tentacle_radius,

@@ -3,9 +3,10 @@
 //! simulation.
 
 use crate::sim::SliceView;
+use crate::sim::guides::Trail;
 use crate::sim::oral_arms::OralArms;
 use crate::species::Species;
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// An owned slice in the layout of [`SliceView`].
@@ -19,6 +20,8 @@ pub struct SliceOutline {
     pub tentacles: [Vec<Vec2>; 2],
     /// The manubrium's and oral arms' chains, hanging at rest from the apex.
     pub oral_arms: [Vec<Vec2>; 2],
+    /// The fringe's guide offsets ([`Trail`]); none unless a test sets them.
+    pub trail: Vec<Vec3>,
 }
 
 impl SliceOutline {
@@ -68,6 +71,7 @@ impl SliceOutline {
             rest_bell,
             tentacles,
             oral_arms,
+            trail: Vec::new(),
         }
     }
 
@@ -78,6 +82,9 @@ impl SliceOutline {
             rest_bell: &self.rest_bell,
             tentacles: [&self.tentacles[0], &self.tentacles[1]],
             oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
+            trail: Trail {
+                offsets: &self.trail,
+            },
         }
     }
 }

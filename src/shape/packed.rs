@@ -28,6 +28,7 @@ use super::profile::Profile;
 use super::tentacles::{self, SIDEWAYS, TentacleLayout};
 use super::variation::{Variation, apex_fade, tentacle_reach};
 use crate::sim::SliceView;
+use crate::sim::guides::GUIDE_NODES;
 use crate::species::Species;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
@@ -38,7 +39,17 @@ use layout::*;
 
 /// The length of the block for a resolution.
 pub fn block_len(res: &Resolution) -> usize {
-    HEADER + (res.rings + 1) * RING + res.tentacles.points * DISC + oral_discs(res) * DISC
+    trail_start(res.rings, res.tentacles.points, oral_discs(res)) + trail_len(res.guides)
+}
+
+/// Where the trail starts: after the header, the rings, the tentacle and the oral discs.
+fn trail_start(rings: usize, points: usize, oral_discs: usize) -> usize {
+    HEADER + (rings + 1) * RING + (points + oral_discs) * DISC
+}
+
+/// Values of the trail of `guides` guide chains.
+fn trail_len(guides: usize) -> usize {
+    guides * (GUIDE_NODES - 1) * TRAIL
 }
 
 /// Discs of the manubrium and the arms in the block.
@@ -113,6 +124,7 @@ impl ShapePacker {
         header[H_ARM_WIDTH] = style.arm_width;
         header[H_ARM_FRILL] = style.frill;
         header[H_ARM_WAVES] = style.waves;
+        header[H_GUIDES] = bits(res.guides);
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -144,6 +156,23 @@ impl ShapePacker {
             let at = out.len();
             out.resize(at + DISC, 0.0);
             write_disc(&mut out[at..], disc);
+        }
+        // The trail, if the view's guides are the resolution's (else none this frame).
+        let trail = &view.trail;
+        let guides = if trail.guides() == res.guides {
+            res.guides
+        } else {
+            0
+        };
+        for g in 0..res.guides {
+            for m in 1..GUIDE_NODES {
+                let d = if g < guides {
+                    trail.offsets[g * GUIDE_NODES + m]
+                } else {
+                    Vec3::ZERO
+                };
+                out.extend_from_slice(&d.to_array());
+            }
         }
         debug_assert_eq!(out.len() - start, block_len(&res));
         Ok(())
@@ -317,7 +346,43 @@ fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
         b.disc(first + i * DISC).point(cs),
         b.disc(first + (i + 1) * DISC).point(cs),
     );
-    p + (q - p) * (x - i as f32) + normal * along + sideways * side
+    let trail = trail_offset(b, sigma, fraction * reach);
+    p + (q - p) * (x - i as f32) + trail + normal * along + sideways * side
+}
+
+/// The guides' offset at angle `sigma` and `fraction` of the chain, as `Trail::at`
+/// interpolates it (a guide's root, not stored, is zero).
+fn trail_offset(b: Block, sigma: f32, fraction: f32) -> Vec3 {
+    let guides = b.count(H_GUIDES);
+    if guides == 0 {
+        return Vec3::ZERO;
+    }
+    let oral = if b.count(H_ORAL) > 0 {
+        let layout = TentacleLayout {
+            count: b.count(H_ORAL),
+            sides: ORAL_SIDES,
+            points: b.count(H_ORAL_POINTS),
+        };
+        2 * oral::disc_count(&layout)
+    } else {
+        0
+    };
+    let start = trail_start(b.rings(), b.count(H_POINTS), oral);
+    let node = |g: usize, m: usize| {
+        if m == 0 {
+            return Vec3::ZERO;
+        }
+        let at = start + (g * (GUIDE_NODES - 1) + m - 1) * TRAIL;
+        Vec3::new(b.0[at], b.0[at + 1], b.0[at + 2])
+    };
+    let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
+    let g = (around as usize).min(guides - 1);
+    let (w, next) = (around - g as f32, (g + 1) % guides);
+    let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
+    let m = (along as usize).min(GUIDE_NODES - 2);
+    let v = along - m as f32;
+    let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
+    on(g) + (on(next) - on(g)) * w
 }
 
 /// Where a vertex of a run of tubes lies: tube `tube`, ring `ring` along it, and on the
@@ -481,7 +546,15 @@ mod tests {
             (Species::aurelia(), 12345, 250.0),
         ] {
             for contraction in [0.0, 0.7] {
-                let slice = SliceOutline::contracted(&species, 31, 12, contraction);
+                let mut slice = SliceOutline::contracted(&species, 31, 12, contraction);
+                // A fringe swept sideways and back by its guides, each its own way (a
+                // guide never moves its root).
+                slice.trail = (0..species.guide_count() * GUIDE_NODES)
+                    .map(|k| {
+                        let (g, m) = (k / GUIDE_NODES, (k % GUIDE_NODES) as f32);
+                        Vec3::new(0.002 * m, 0.0001 * m * g as f32, -0.001 * m * m / 6.0)
+                    })
+                    .collect();
                 let view = slice.view();
                 let mesh = JellyMesh::from_slice(&view, &species, seed, time).unwrap();
                 let mut block = Vec::new();

@@ -6,6 +6,8 @@
 //! curves, and the rest slice, are then resampled with the same cubic spline parameters, so
 //! the pairs of the rendering model stay opposite each other.
 
+pub use crate::sim::body::outward_normals;
+
 use super::spline::catmull_rom;
 use crate::sim::body::mesoglea_thickness;
 use crate::species::Species;
@@ -76,30 +78,6 @@ impl Profile {
         self.pairs
             .last()
             .expect("Profile::build makes at least two pairs")
-    }
-}
-
-/// Unit normals of a left-to-right slice curve, turned away from the bell cavity (+y at an
-/// upright apex). Where the curve has no direction (coincident points) the nearest defined
-/// normal is reused; a curve with none at all gets +y.
-pub fn outward_normals(points: &[Vec2], out: &mut Vec<Vec2>) {
-    out.clear();
-    let n = points.len();
-    out.extend((0..n).map(|i| {
-        let tangent = points[(i + 1).min(n - 1)] - points[i.saturating_sub(1)];
-        tangent.perp().normalize_or_zero()
-    }));
-    let Some(first) = out.iter().position(|v| *v != Vec2::ZERO) else {
-        out.iter_mut().for_each(|v| *v = Vec2::Y);
-        return;
-    };
-    let mut last = out[first];
-    for v in out.iter_mut() {
-        if *v == Vec2::ZERO {
-            *v = last;
-        } else {
-            last = *v;
-        }
     }
 }
 

@@ -12,6 +12,7 @@ use super::discs::{Disc, angles};
 use super::profile::RingPair;
 use super::spline::catmull_rom;
 use super::variation::Variation;
+use crate::sim::guides::Trail;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
@@ -133,6 +134,50 @@ pub fn chain_discs(
     aperture
 }
 
+/// Where the slice draws each guide chain's tentacle (`sim::guides`): for `guides`
+/// angles `GuideChains::angle`, `GUIDE_NODES` points from the root down the chain discs
+/// (as [`chain_discs`] sweeps them), relative to `origin` (the bell's centroid), guide by
+/// guide. Without variation: the guides carry the water, the noise is drawn on top.
+pub fn guide_reference(
+    chains: [&[Vec2]; 2],
+    roots: [Vec2; 2],
+    origin: Vec2,
+    guides: usize,
+    out: &mut Vec<Vec3>,
+) {
+    use crate::sim::guides::{GUIDE_NODES, GuideChains};
+    let chains = [0, 1].map(|side| {
+        if chains[side].is_empty() {
+            std::slice::from_ref(&roots[side])
+        } else {
+            chains[side]
+        }
+    });
+    let mut radial = Disc::through(roots[0], roots[1], Vec2::X).radial;
+    let origin = Vec3::new(origin.x, origin.y, 0.0);
+    let mut discs = [Disc::through(roots[0], roots[1], radial); GUIDE_NODES];
+    for (m, disc) in discs.iter_mut().enumerate() {
+        let f = m as f32 / (GUIDE_NODES - 1) as f32;
+        let at = |c: &[Vec2]| linear(c, f * (c.len() - 1) as f32);
+        *disc = Disc::through(at(chains[0]), at(chains[1]), radial);
+        radial = disc.radial;
+    }
+    out.clear();
+    for g in 0..guides {
+        let (sin, cos) = GuideChains::angle(g, guides).sin_cos();
+        out.extend(discs.iter().map(|d| d.point((cos, sin)) - origin));
+    }
+}
+
+/// The point at index `u` of a polyline, straight between its points.
+fn linear(points: &[Vec2], u: f32) -> Vec2 {
+    let i = (u.max(0.0) as usize).min(points.len().saturating_sub(2));
+    match points.get(i + 1) {
+        Some(next) => points[i].lerp(*next, u - i as f32),
+        None => points[0],
+    }
+}
+
 /// The point at `fraction` of the way down the chain's discs (0 the root, 1 the tip), at
 /// angle `cs` around the axis: a tentacle drawn shorter than the chain stops between two
 /// of its discs.
@@ -150,8 +195,9 @@ fn fraction(layout: &TentacleLayout, m: usize) -> f32 {
 
 /// Writes positions and (analytic, tube-radial) normals in place.
 ///
-/// `chains` are the slice's left and right chains (see [`chain_discs`]). `noise` holds QP
-/// per [`noise_samples`]. Each centreline moves with the margin above it (structural and
+/// `chains` are the slice's left and right chains (see [`chain_discs`]), `trail` the
+/// guides' offsets in the water the slice does not see. `noise` holds QP per
+/// [`noise_samples`]. Each centreline moves with the margin above it (structural and
 /// unstructured variation along the margin's mesoglea normal), the noise running on down
 /// the tentacle; a second channel, zero at the root, sways it sideways, so tentacles wave
 /// across the view as well as along it.
@@ -159,6 +205,7 @@ fn fraction(layout: &TentacleLayout, m: usize) -> f32 {
 pub(crate) fn write_surface(
     layout: &TentacleLayout,
     chains: [&[Vec2]; 2],
+    trail: &Trail,
     roots: [Vec2; 2],
     margin: &RingPair,
     radius: f32,
@@ -183,7 +230,8 @@ pub(crate) fn write_surface(
         for (m, qp) in noise.chunks_exact(2).enumerate() {
             let c = lobe + variation.unstructured_with(1.0, qp[0]);
             let side = variation.unstructured_with(fraction(l, m), qp[1]);
-            let on_chain = along(&s.discs, fraction(l, m) * reach, cs);
+            let drawn = fraction(l, m) * reach;
+            let on_chain = along(&s.discs, drawn, cs) + trail.at(sigma, drawn);
             s.centre.push(on_chain + normal * c + sideways * side);
         }
         tangents(&s.centre, &mut s.tangent);

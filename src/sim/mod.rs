@@ -9,6 +9,7 @@ pub mod clock;
 pub(crate) mod coupling;
 pub mod cycle;
 pub(crate) mod fluid;
+pub mod guides;
 pub mod inspect;
 pub(crate) mod kernel;
 pub(crate) mod muscle;
@@ -41,4 +42,7 @@ pub struct SliceView<'a> {
     /// Left and right chains of the manubrium and oral arms, from beside
     /// the subumbrellar apex down; empty for a species without them.
     pub oral_arms: [&'a [Vec2]; 2],
+    /// The fringe's offsets in the 3D water the slice does not see (the plugin's guide
+    /// chains); [`Trail::NONE`](guides::Trail::NONE) for the slice alone.
+    pub trail: guides::Trail<'a>,
 }

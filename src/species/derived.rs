@@ -86,4 +86,13 @@ impl Species {
     pub fn step_length(&self) -> f32 {
         self.period() / self.steps_per_cycle() as f32
     }
+
+    /// Guide chains the fringe is drawn with: `tentacle_guides`, at most one per tentacle,
+    /// none without a fringe.
+    pub fn guide_count(&self) -> usize {
+        if self.tentacle_count == 0 || !(self.tentacle_length > 0.0) {
+            return 0;
+        }
+        self.tentacle_guides.min(self.tentacle_count) as usize
+    }
 }

@@ -119,6 +119,11 @@ pub struct Species {
     /// of the chain, as a living fringe holds some tentacles contracted (0: an even
     /// fringe). Drawn only: the slice's chain, and so the drag, keep `tentacle_length`.
     pub tentacle_length_spread: f32,
+    /// Guide chains around the margin that carry the fringe in the 3D water the slice does
+    /// not see (a current unlike the one carrying the bell, the body's turns); the drawn
+    /// tentacles bend between them. 0: the fringe follows the slice alone. Drawn only:
+    /// the slice's chains drive the swimming. At most one per tentacle is used.
+    pub tentacle_guides: u32,
 
     // --- Anatomy (drawn; carried by the slice's water, never pushing it) ---
     /// Length of the manubrium, the stalk carrying the mouth from the subumbrellar apex, m

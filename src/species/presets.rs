@@ -43,6 +43,9 @@ impl Species {
             tentacle_cross_section: 0.01,
             tentacle_radius: 0.00015,
             tentacle_length_spread: 0.35,
+            // A current past the bell is a first harmonic around the margin and a turn a
+            // second; eight guides draw both and their lag across a fringe of 200.
+            tentacle_guides: 8,
             // Four frilly oral arms from a short manubrium, four horseshoe gonads between
             // them and sixteen radial canals: how a moon jelly is recognised.
             manubrium_length: 0.003,
@@ -96,6 +99,7 @@ impl Species {
             tentacle_radius: 0.00025,
             // Some of a crystal jelly's long tentacles hang full length, others curled up.
             tentacle_length_spread: 0.6,
+            tentacle_guides: 8,
             tentacle_sides: 4,
             // A short, wide stomach fringed with lips, gonads along its many radial canals.
             manubrium_length: 0.003,
@@ -138,6 +142,8 @@ impl Species {
             tentacle_length: 0.025,
             tentacle_radius: 0.0003,
             tentacle_length_spread: 0.15,
+            // One guide per tentacle: each of the four trails on its own.
+            tentacle_guides: 4,
             tentacle_sides: 6,
             // A long tubular manubrium hanging out of the bell, four radial canals.
             manubrium_length: 0.02,

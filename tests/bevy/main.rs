@@ -27,4 +27,5 @@ mod editor;
 mod plugin;
 mod render;
 mod shader;
+mod tentacles;
 mod water_and_steering;

@@ -11,7 +11,7 @@ pub(crate) use snapshot::Snapshot;
 
 use super::jellyfish::Jellyfish;
 use super::schedule::JellyfishSystems;
-use super::swimming::{Pose, SwimMotion};
+use super::swimming::{Pose, SwimMotion, TentacleGuides};
 use bevy::prelude::*;
 
 /// Keeps each jellyfish's recent steps and writes its `Transform` between them.
@@ -31,11 +31,19 @@ impl Plugin for InterpolationPlugin {
 /// The translation and rotation are the poses recorded at slice steps, blended, not a sum
 /// of per-frame increments, so a frame rate changes nothing but how often they are drawn.
 /// A `Transform` changed by someone else since the plugin wrote it (a game's teleport or
-/// turn) moves the travel and every stored pose with it.
-fn write_transforms(mut jellyfish: Query<(&mut SliceHistory, &mut SwimMotion, &mut Transform)>) {
+/// turn) moves the travel and every stored pose with it; the fringe stays in the water
+/// and is dragged after it (a jump of a few tentacle lengths starts it afresh).
+fn write_transforms(
+    mut jellyfish: Query<(
+        &mut SliceHistory,
+        &mut SwimMotion,
+        &mut Transform,
+        Option<&mut TentacleGuides>,
+    )>,
+) {
     jellyfish
         .par_iter_mut()
-        .for_each(|(mut history, mut motion, mut transform)| {
+        .for_each(|(mut history, mut motion, mut transform, guides)| {
             if history.newest().is_none() {
                 return;
             }
@@ -44,7 +52,11 @@ fn write_transforms(mut jellyfish: Query<(&mut SliceHistory, &mut SwimMotion, &m
             {
                 let (from, to) = (Pose::of(&written), Pose::of(&transform));
                 history.move_poses(from, to);
-                motion.pose = motion.pose.moved(from, to);
+                let moved = motion.pose.moved(from, to);
+                if let Some(mut guides) = guides {
+                    guides.moved(motion.pose, moved, transform.scale);
+                }
+                motion.pose = moved;
             }
             let Some(pose) = history.shown_pose() else {
                 return;

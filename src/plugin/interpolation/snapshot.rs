@@ -3,8 +3,9 @@
 
 use crate::plugin::swimming::Pose;
 use crate::sim::cycle::CycleFrame;
+use crate::sim::guides::Trail;
 use crate::sim::{SliceSim, SliceView};
-use bevy::math::Vec2;
+use bevy::math::{Vec2, Vec3};
 
 /// One step's slice, relative to the bell's centroid so that the box following the bell
 /// never shows.
@@ -13,6 +14,8 @@ pub(crate) struct Snapshot {
     pub bell: Vec<Vec2>,
     pub tentacles: [Vec<Vec2>; 2],
     pub oral_arms: [Vec<Vec2>; 2],
+    /// The fringe's guide offsets after the step (`TentacleGuides`), body frame.
+    pub trail: Vec<Vec3>,
     pub centroid: Vec2,
     pub swim: f32,
     /// Slice time of the state, s.
@@ -53,6 +56,13 @@ impl Snapshot {
             }
         };
         lerp(&mut self.bell, &a.bell, &b.bell);
+        self.trail.clear();
+        if a.trail.len() == b.trail.len() {
+            let trail = a.trail.iter().zip(&b.trail).map(|(a, b)| a.lerp(*b, t));
+            self.trail.extend(trail);
+        } else {
+            self.trail.extend_from_slice(&b.trail);
+        }
         for side in 0..2 {
             lerp(
                 &mut self.tentacles[side],
@@ -88,6 +98,12 @@ impl Snapshot {
         self.time = time;
     }
 
+    /// The fringe's guide offsets after the step.
+    pub fn set_trail(&mut self, offsets: &[Vec3]) {
+        self.trail.clear();
+        self.trail.extend_from_slice(offsets);
+    }
+
     /// `self += weight · other`, point by point, where the shapes match.
     pub fn add(&mut self, other: &Snapshot, weight: f32) {
         let add = |a: &mut Vec<Vec2>, b: &[Vec2]| {
@@ -108,6 +124,9 @@ impl Snapshot {
             rest_bell,
             tentacles: [&self.tentacles[0], &self.tentacles[1]],
             oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
+            trail: Trail {
+                offsets: &self.trail,
+            },
         }
     }
 }

@@ -10,7 +10,9 @@ use super::JellyfishSlice;
 use super::events::{Lifecycle, LifecycleQueue};
 use super::tier::Replay;
 use crate::plugin::interpolation::SliceHistory;
-use crate::plugin::swimming::{Resting, Steering, Stroke, SwimMotion, Travel};
+use crate::plugin::swimming::{
+    GuideFrame, Pose, Resting, Steering, Stroke, SwimMotion, TentacleGuides, Travel,
+};
 use crate::plugin::timings::JellyfishTimings;
 use crate::plugin::water::AmbientWater;
 use crate::sim::clock::FixedClock;
@@ -23,6 +25,7 @@ type Stepped = (
     &'static mut JellyfishSlice,
     &'static mut SliceHistory,
     &'static mut SwimMotion,
+    Option<&'static mut TentacleGuides>,
     &'static Transform,
     Option<&'static Steering>,
     Has<Resting>,
@@ -45,7 +48,7 @@ pub(super) fn step_slices(
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
     jellyfish.par_iter_mut().for_each(
-        |(entity, mut slice, mut history, mut motion, transform, steering, resting)| {
+        |(entity, mut slice, mut history, mut motion, guides, transform, steering, resting)| {
             let slice = &mut *slice;
             let Some(clock) = slice.clock() else {
                 return;
@@ -68,7 +71,8 @@ pub(super) fn step_slices(
                     travel: &travel,
                     events: &events,
                 };
-                step.advance(slice, &mut history, &mut motion);
+                let mut guides = guides;
+                step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
                 timings.add_simulation(start.elapsed());
             }
             slice.show(&mut history);
@@ -95,6 +99,7 @@ impl Step<'_> {
         slice: &mut JellyfishSlice,
         history: &mut SliceHistory,
         motion: &mut SwimMotion,
+        mut guides: Option<&mut TentacleGuides>,
     ) {
         let swum_before = motion.swum;
         let mut stepped = 0.0;
@@ -114,9 +119,23 @@ impl Step<'_> {
                     resting: sim.resting(),
                     behind: clock.added() - clock.time(),
                 };
+                let (before, surge) = (motion.pose, stroke.swim - motion.swum);
                 self.travel.step(&stroke, motion);
                 stepped += stroke.step;
-                history.record(clock, frame, motion.pose, |s| s.capture(sim));
+                let trail = guides.as_deref_mut().map(|guides| {
+                    let view = sim.view();
+                    let centroid = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
+                    let shape = (view.bell, view.tentacles, centroid);
+                    guides.step(
+                        &self.guide_frame(&stroke, surge, before, motion, shape),
+                        None,
+                    );
+                    guides.offsets()
+                });
+                history.record(clock, frame, motion.pose, |s| {
+                    s.capture(sim);
+                    s.set_trail(trail.unwrap_or_default());
+                });
                 if stroke_begins(clock, stroke.resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
                 }
@@ -136,11 +155,31 @@ impl Step<'_> {
                     resting,
                     behind: clock.added() - clock.time(),
                 };
+                let (before, surge) = (motion.pose, stroke.swim - motion.swum);
                 self.travel.step(&stroke, motion);
                 stepped += stroke.step;
+                let trail = guides.as_deref_mut().map(|guides| {
+                    let shape = (
+                        &cycle.bell[..],
+                        [&cycle.tentacles[0][..], &cycle.tentacles[1][..]],
+                        Vec2::ZERO,
+                    );
+                    // Towed at the recorded stroke's mean speed (nothing while resting).
+                    let mean = if resting {
+                        0.0
+                    } else {
+                        replay.cache.swim_per_cycle() / stroke.species.period()
+                    };
+                    guides.step(
+                        &self.guide_frame(&stroke, surge, before, motion, shape),
+                        Some(mean),
+                    );
+                    guides.offsets()
+                });
                 let (time, swim) = (clock.time(), replay.swim as f32);
                 history.record(clock, frame, motion.pose, |s| {
-                    s.copy_frame(cycle, time, swim)
+                    s.copy_frame(cycle, time, swim);
+                    s.set_trail(trail.unwrap_or_default());
                 });
                 if stroke_begins(clock, resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
@@ -149,6 +188,34 @@ impl Step<'_> {
         }
         if stepped > 0.0 {
             motion.swim_speed = (motion.swum - swum_before) * self.travel.scale.y / stepped;
+        }
+    }
+}
+
+impl Step<'_> {
+    /// What the guides need of the step just taken: `shape` is the bell, the two tentacle
+    /// chains and the bell's centroid after it.
+    fn guide_frame<'a>(
+        &'a self,
+        stroke: &Stroke<'a>,
+        surge: f32,
+        before: Pose,
+        motion: &SwimMotion,
+        shape: (&'a [Vec2], [&'a [Vec2]; 2], Vec2),
+    ) -> GuideFrame<'a> {
+        let (bell, tentacles, centroid) = shape;
+        GuideFrame {
+            species: stroke.species,
+            bell,
+            tentacles,
+            centroid,
+            dt: stroke.step,
+            surge,
+            before,
+            after: motion.pose,
+            scale: self.travel.scale,
+            water: self.travel.water,
+            time: self.travel.now - stroke.behind,
         }
     }
 }

@@ -1,11 +1,15 @@
 //! How a jellyfish travels through the world: its own swimming along its axis (what its
 //! slice computes), carried by the water, turned by the water's vorticity and, during power
-//! strokes, by its [`Steering`]; held still by [`Resting`].
+//! strokes, by its [`Steering`]; held still by [`Resting`]. Its fringe trails in the water
+//! around it ([`TentacleGuides`]).
 
+mod fringe;
 mod pose;
 mod steering;
 mod travel;
 
+pub(crate) use fringe::GuideFrame;
+pub use fringe::TentacleGuides;
 pub use pose::Pose;
 pub use steering::{Steering, SteeringTarget};
 pub(crate) use travel::{Stroke, Travel};
@@ -20,6 +24,7 @@ pub struct SwimmingPlugin;
 impl Plugin for SwimmingPlugin {
     fn build(&self, app: &mut App) {
         app.register_required_components::<Jellyfish, SwimMotion>()
+            .register_required_components::<Jellyfish, TentacleGuides>()
             .register_type::<SwimMotion>()
             .register_type::<Steering>()
             .register_type::<Resting>();

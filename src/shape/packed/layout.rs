@@ -10,6 +10,7 @@
 
 use crate::shape::tentacles::SIDEWAYS;
 use crate::shape::variation::APEX_FADE;
+use crate::sim::guides::GUIDE_NODES;
 use crate::species::limits::ORAL_SIDES;
 use std::f32::consts::TAU;
 
@@ -120,8 +121,13 @@ layout! {
         H_ORAL_POINTS = 31;
         /// The species' `tentacle_length_spread`.
         H_TENTACLE_SPREAD = 32;
+        /// Guide chains of the fringe's trail, stored after the oral discs.
+        H_GUIDES = 33;
         /// Header length.
-        HEADER = 33;
+        HEADER = 34;
+        /// Values per guide node of the trail: its offset (x, y, z); a guide stores its
+        /// nodes after the root, which never moves.
+        TRAIL = 3;
         /// Values per disc: centre (x, y), radius, radial (x, y).
         DISC = 5;
         /// Values per pair of mesoglea normals: left (x, y), then right (x, y).
@@ -142,6 +148,8 @@ layout! {
     shared {
         /// Sides of the manubrium's and the oral arms' tubes (`species::limits`).
         ORAL_SIDES: Count;
+        /// Nodes per guide chain, the root included (`sim::guides`).
+        GUIDE_NODES: Count;
         /// Latitude offset of the tentacles' sideways noise channel (`shape::tentacles`).
         SIDEWAYS: Real;
         /// Latitude below which structural and compression variation fade in

@@ -20,9 +20,10 @@ mod tentacle;
 
 pub(crate) use depth::Depth;
 pub(crate) use elements::{Hinge, Muscle, Spring};
-pub use outline::{Outline, contains};
+pub use outline::{Outline, contains, outward_normals};
 pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
+pub(crate) use tentacle::filament;
 
 use crate::species::Species;
 use elements::{Constraint, constraints, wrap_angle};

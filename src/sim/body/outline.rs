@@ -66,6 +66,30 @@ pub fn contains(points: &[Vec2], p: Vec2) -> bool {
     inside
 }
 
+/// Unit normals of a left-to-right slice curve, turned away from the bell cavity (+y at an
+/// upright apex). Where the curve has no direction (coincident points) the nearest defined
+/// normal is reused; a curve with none at all gets +y.
+pub fn outward_normals(points: &[Vec2], out: &mut Vec<Vec2>) {
+    out.clear();
+    let n = points.len();
+    out.extend((0..n).map(|i| {
+        let tangent = points[(i + 1).min(n - 1)] - points[i.saturating_sub(1)];
+        tangent.perp().normalize_or_zero()
+    }));
+    let Some(first) = out.iter().position(|v| *v != Vec2::ZERO) else {
+        out.iter_mut().for_each(|v| *v = Vec2::Y);
+        return;
+    };
+    let mut last = out[first];
+    for v in out.iter_mut() {
+        if *v == Vec2::ZERO {
+            *v = last;
+        } else {
+            last = *v;
+        }
+    }
+}
+
 /// Proper crossing of segments `ab` and `cd`.
 fn segments_cross(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
     let side = |p: Vec2, q: Vec2, r: Vec2| (q - p).perp_dot(r - p);

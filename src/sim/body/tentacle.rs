@@ -44,11 +44,32 @@ impl TentacleDrag {
     /// Force per unit of slip velocity at relative speed `speed` (m/s), N·s/m² per metre
     /// of depth.
     pub(crate) fn at(&self, speed: f32) -> f32 {
+        (self.per_length(speed) * self.length_per_point).max(1e-9)
+    }
+
+    /// Force per unit of slip velocity per length of one tentacle at relative speed
+    /// `speed` (m/s), N·s/m².
+    pub(crate) fn per_length(&self, speed: f32) -> f32 {
         let d = 2.0 * self.radius;
         let re = (speed * d / self.kinematic_viscosity).max(1e-6);
         let drag_coefficient = 1.0 + 10.0 * re.powf(-2.0 / 3.0);
         let inertial = 0.5 * self.density * speed * d * drag_coefficient;
-        (self.stokes.max(inertial) * self.length_per_point).max(1e-9)
+        self.stokes.max(inertial)
+    }
+}
+
+/// One tentacle of the species as a filament in the water at relative speed `speed` (m/s):
+/// the drag across it by the slice's own law, its mass with the water it carries (a
+/// tentacle is about as dense as sea water; a cylinder carries its own volume of water
+/// sideways) and the bending stiffness of a cylinder of mesoglea.
+pub(crate) fn filament(species: &Species, speed: f32) -> crate::sim::guides::Filament {
+    let a = species.tentacle_radius.max(1e-6);
+    let drag = TentacleDrag::new(species, 1.0, Depth::Planar);
+    let area = std::f32::consts::PI * a * a;
+    crate::sim::guides::Filament {
+        mass_per_length: 2.0 * species.density * area,
+        normal_drag: drag.per_length(speed.abs()),
+        bending: species.elastic_modulus * area * a * a / 4.0,
     }
 }
 

@@ -291,12 +291,48 @@ fn tentacle_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
     let along = lobe(base, sigma) + amplitude * noise(base, lat, cs);
     let side = amplitude * fraction * noise(base, lat + packed::SIDEWAYS, cs);
     // tentacles::along, between the two discs around the drawn length.
-    let x = fraction * tentacle_reach(base, t) * f32(points - 1u);
+    let reach = tentacle_reach(base, t);
+    let x = fraction * reach * f32(points - 1u);
     let i = min(u32(x), points - 2u);
     let first = ring_at(base, count(base, packed::H_RINGS) + 1u);
     let p = disc_point(read_disc(first + i * packed::DISC), cs);
     let q = disc_point(read_disc(first + (i + 1u) * packed::DISC), cs);
-    return p + (q - p) * (x - f32(i)) + normal * along + sideways * side;
+    let trail = trail_offset(base, sigma, fraction * reach);
+    return p + (q - p) * (x - f32(i)) + trail + normal * along + sideways * side;
+}
+
+// packed::trail_offset (sim::guides::Trail::at): node m of guide g, the root zero.
+fn trail_node(start: u32, g: u32, m: u32) -> vec3<f32> {
+    if m == 0u {
+        return vec3(0.0);
+    }
+    let at = start + (g * (packed::GUIDE_NODES - 1u) + m - 1u) * packed::TRAIL;
+    return vec3(shapes[at], shapes[at + 1u], shapes[at + 2u]);
+}
+
+fn trail_offset(base: u32, sigma: f32, fraction: f32) -> vec3<f32> {
+    let guides = count(base, packed::H_GUIDES);
+    if guides == 0u {
+        return vec3(0.0);
+    }
+    var oral = 0u;
+    if count(base, packed::H_ORAL) > 0u {
+        oral = 2u * oral_disc_count(count(base, packed::H_ORAL_POINTS));
+    }
+    let start = ring_at(base, count(base, packed::H_RINGS) + 1u)
+        + (count(base, packed::H_POINTS) + oral) * packed::DISC;
+    let turns = sigma / packed::TAU;
+    let around = (turns - floor(turns)) * f32(guides);
+    let g = min(u32(around), guides - 1u);
+    let w = around - f32(g);
+    let next = (g + 1u) % guides;
+    let along = clamp(fraction, 0.0, 1.0) * f32(packed::GUIDE_NODES - 1u);
+    let m = min(u32(along), packed::GUIDE_NODES - 2u);
+    let v = along - f32(m);
+    let a = trail_node(start, g, m) + (trail_node(start, g, m + 1u) - trail_node(start, g, m)) * v;
+    let b = trail_node(start, next, m)
+        + (trail_node(start, next, m + 1u) - trail_node(start, next, m)) * v;
+    return a + (b - a) * w;
 }
 
 // variation::tentacle_reach.

@@ -1,0 +1,293 @@
+//! Guide chains: the fringe in the 3D water that the slice cannot see.
+//!
+//! The slice simulates the water in its own plane, in a frame that swims with the bell and
+//! never turns; its tentacle chains are what a fringe does in that water, and they keep
+//! driving the swimming. What the slice cannot see is carried by a few *guide chains*
+//! around the margin, as offsets from where the slice draws their tentacle (the
+//! *reference*): the water's velocity relative to the body that differs from the slice's
+//! (a current that is not the one carrying the bell, a game dragging the jellyfish through
+//! the water) and the body's turns, which leave the fringe where the water holds it.
+//!
+//! Each guide is a towed filament pinned at its root (follow-the-leader kinematics of a
+//! slender body whose drag dominates its inertia): every node moves with the water
+//! relative to it — the stream the swimming tows past the fringe, speed `W` along the
+//! reference from root to tip, plus the unseen water `w` — and the chain is then pulled
+//! back to its length from the root, which is the tension. In a uniform relative stream
+//! the chain comes to lie along it, where its drag balances its tension; with `w = 0` it
+//! stays on the reference. The drag per length across the tentacle (`c_n`, the slice's own
+//! law at the tentacle's Reynolds number) sets the filament's response time
+//! `τ = m/c_n` (its mass with the water it carries; its inertia in a turn) and, with its
+//! bending stiffness `EI`, how fast a kink of the guide's spacing `Δs` straightens,
+//! `EI/(c_n·Δs⁴)`. The drawn chain keeps its reference's segment lengths (inextensible)
+//! and stays out of the bell ([`Solid`]).
+
+mod solid;
+mod trail;
+
+pub use solid::Solid;
+pub use trail::Trail;
+
+use crate::species::Species;
+use glam::{Quat, Vec3};
+
+/// Nodes per guide, the root included: enough for a smooth curve of the offset, whose
+/// steady state is straight and whose lag after a turn is one bend.
+pub const GUIDE_NODES: usize = 7;
+
+/// A jump of the body farther than this many tentacle lengths in one move is a teleport,
+/// not a drag through the water: the fringe starts again where the slice draws it.
+const TELEPORT_LENGTHS: f32 = 4.0;
+
+/// The guide chains of one jellyfish: offsets from the reference, body frame (the slice's
+/// 3D frame: metres, y the bell's axis, origin at the bell's centroid).
+#[derive(Clone, Debug, Default)]
+pub struct GuideChains {
+    guides: usize,
+    /// `guides × GUIDE_NODES` offsets from the reference, m; each guide's root is zero.
+    offsets: Vec<Vec3>,
+    /// Their rate of change, m/s.
+    velocity: Vec<Vec3>,
+    /// The reference of the last step (where the slice drew each guide), m.
+    reference: Vec<Vec3>,
+}
+
+/// What one step of the guides needs besides their state.
+#[derive(Clone, Copy, Debug)]
+pub struct GuideStep<'a> {
+    /// The step, s.
+    pub dt: f32,
+    /// Where the slice draws each guide's tentacle after the step: `guides × GUIDE_NODES`
+    /// points, root first, body frame, m.
+    pub reference: &'a [Vec3],
+    /// The water's velocity relative to the body that the slice does not see, at each
+    /// node, body frame, m/s.
+    pub water: &'a [Vec3],
+    /// How fast the swimming tows the water past the fringe from root to tip, m/s (≥ 0).
+    pub towing: f32,
+    /// The tentacle's drag and inertia.
+    pub filament: Filament,
+    /// The bell as a solid the nodes must stay out of.
+    pub solid: &'a Solid,
+}
+
+/// A tentacle as a filament in the water: what its drag, inertia and stiffness are.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Filament {
+    /// Mass per length with the water it carries sideways (ρ_t + ρ)·π·a², kg/m.
+    pub mass_per_length: f32,
+    /// Drag per length across the tentacle, per unit of relative speed, N·s/m².
+    pub normal_drag: f32,
+    /// Bending stiffness E·π·a⁴/4, N·m².
+    pub bending: f32,
+}
+
+impl Filament {
+    /// A tentacle of `species` at relative speed `speed` (m/s): the drag across it by the
+    /// slice's own law (slender-body Stokes drag, White's cylinder drag as it speeds up),
+    /// its mass with the water it carries and the bending of a cylinder of mesoglea.
+    pub fn of(species: &Species, speed: f32) -> Self {
+        crate::sim::body::filament(species, speed)
+    }
+
+    /// The time the tentacle takes to catch up with the water around it, s.
+    pub fn response_time(&self) -> f32 {
+        self.mass_per_length / self.normal_drag.max(1e-12)
+    }
+}
+
+impl GuideChains {
+    /// `guides` chains hanging where the slice draws them.
+    pub fn new(guides: usize) -> Self {
+        let n = guides * GUIDE_NODES;
+        Self {
+            guides,
+            offsets: vec![Vec3::ZERO; n],
+            velocity: vec![Vec3::ZERO; n],
+            reference: Vec::new(),
+        }
+    }
+
+    /// Guides around the margin.
+    pub fn guides(&self) -> usize {
+        self.guides
+    }
+
+    /// Offsets from the reference, `guides × GUIDE_NODES`, guide by guide, root first.
+    pub fn offsets(&self) -> &[Vec3] {
+        &self.offsets
+    }
+
+    /// The angle of guide `g` around the axis (σ, from +x through +z).
+    pub fn angle(g: usize, guides: usize) -> f32 {
+        std::f32::consts::TAU * g as f32 / guides.max(1) as f32
+    }
+
+    /// Back where the slice draws them, at rest.
+    pub fn reset(&mut self) {
+        self.offsets.fill(Vec3::ZERO);
+        self.velocity.fill(Vec3::ZERO);
+    }
+
+    /// The body turned by `turn` (the new frame's axes in the old frame's terms): nodes
+    /// stay where the water holds them, so their body-frame positions turn back.
+    pub fn turn_frame(&mut self, turn: Quat) {
+        if turn == Quat::IDENTITY || self.reference.len() != self.offsets.len() {
+            return;
+        }
+        let back = turn.inverse();
+        for ((d, v), q) in self
+            .offsets
+            .iter_mut()
+            .zip(&mut self.velocity)
+            .zip(&self.reference)
+        {
+            *d = back * (*q + *d) - *q;
+            *v = back * *v;
+        }
+        self.zero_roots();
+    }
+
+    /// The body was moved by something other than the water and its own swimming (a game
+    /// placing it): `to_body` maps a point of the old body frame into the new one. The
+    /// nodes stay in the water, the chains pulled after their roots and kept out of the
+    /// bell; a jump of more than a few `length`s starts them afresh.
+    pub fn move_frame(&mut self, to_body: impl Fn(Vec3) -> Vec3, length: f32, solid: &Solid) {
+        if self.reference.len() != self.offsets.len() {
+            return;
+        }
+        let jump = to_body(Vec3::ZERO).length();
+        if !(jump <= TELEPORT_LENGTHS * length) {
+            self.reset();
+            return;
+        }
+        let origin = to_body(Vec3::ZERO);
+        for ((d, v), q) in self
+            .offsets
+            .iter_mut()
+            .zip(&mut self.velocity)
+            .zip(&self.reference)
+        {
+            *d = to_body(*q + *d) - *q;
+            *v = to_body(*v) - origin;
+        }
+        for g in 0..self.guides {
+            let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
+            inextensible(
+                &self.reference[range.clone()],
+                &mut self.offsets[range],
+                solid,
+            );
+        }
+    }
+
+    /// One step: each node carried by the water relative to it (with the filament's lag
+    /// `τ`), its kinks relaxed by bending, the chain pulled back to its length from the
+    /// root and kept out of the bell. A step with the wrong number of points is skipped.
+    pub fn step(&mut self, s: &GuideStep) {
+        let n = self.offsets.len();
+        if s.reference.len() != n || s.water.len() != n || !(s.dt > 0.0) {
+            return;
+        }
+        let (dt, towing) = (s.dt, s.towing.max(0.0));
+        let tau = s.filament.response_time();
+        for g in 0..self.guides {
+            let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
+            let reference = &s.reference[range.clone()];
+            let water = &s.water[range.clone()];
+            let offsets = &mut self.offsets[range.clone()];
+            let velocity = &mut self.velocity[range];
+            let before: [Vec3; GUIDE_NODES] = (&*offsets).try_into().unwrap_or_default();
+            for m in 1..GUIDE_NODES {
+                let along = (reference[m] - reference[m - 1]).normalize_or(Vec3::NEG_Y);
+                let stream = water[m] + towing * along;
+                velocity[m] = (tau * velocity[m] + dt * stream) / (tau + dt);
+                offsets[m] += dt * velocity[m];
+            }
+            let spacing = length(reference) / (GUIDE_NODES - 1) as f32;
+            let rate = s.filament.bending / (s.filament.normal_drag.max(1e-12) * spacing.powi(4));
+            straighten(offsets, (rate * dt).min(0.25));
+            inextensible(reference, offsets, s.solid);
+            for m in 1..GUIDE_NODES {
+                velocity[m] = (offsets[m] - before[m]) / dt;
+            }
+        }
+        self.reference.clear();
+        self.reference.extend_from_slice(s.reference);
+        if !self.offsets.iter().all(|d| d.is_finite()) {
+            self.reset();
+        }
+    }
+
+    /// The steady trailing in a relative stream that does not change: `water[g]` along
+    /// guide `g`, towed at `towing` (what a far jellyfish, which replays its cycle, shows).
+    pub fn steady(&mut self, reference: &[Vec3], water: &[Vec3], towing: f32, solid: &Solid) {
+        if reference.len() != self.offsets.len() || water.len() != self.guides {
+            return;
+        }
+        // Below a tenth of a millimetre a second the fringe is simply carried off.
+        let towing = towing.max(1e-4);
+        for g in 0..self.guides {
+            let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
+            let reference = &reference[range.clone()];
+            let step = length(reference) / (GUIDE_NODES - 1) as f32;
+            let offsets = &mut self.offsets[range.clone()];
+            for (m, d) in offsets.iter_mut().enumerate() {
+                *d = water[g] * (m as f32 * step / towing);
+            }
+            inextensible(reference, offsets, solid);
+            self.velocity[range].fill(Vec3::ZERO);
+        }
+        self.reference.clear();
+        self.reference.extend_from_slice(reference);
+        if !self.offsets.iter().all(|d| d.is_finite()) {
+            self.reset();
+        }
+    }
+
+    fn zero_roots(&mut self) {
+        for g in 0..self.guides {
+            self.offsets[g * GUIDE_NODES] = Vec3::ZERO;
+            self.velocity[g * GUIDE_NODES] = Vec3::ZERO;
+        }
+    }
+}
+
+/// The length of a polyline.
+fn length(points: &[Vec3]) -> f32 {
+    points.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// Bending: each interior offset moves `share` of the way to its neighbours' mean, so a
+/// kink the water put into the guide (not the reference's own curve) straightens.
+fn straighten(offsets: &mut [Vec3], share: f32) {
+    if share <= 0.0 {
+        return;
+    }
+    let before: [Vec3; GUIDE_NODES] = (&*offsets).try_into().unwrap_or_default();
+    for m in 1..GUIDE_NODES - 1 {
+        let mean = 0.5 * (before[m - 1] + before[m + 1]);
+        offsets[m] += share * (mean - before[m]);
+    }
+}
+
+/// Keeps each segment of the drawn chain (reference + offset) at its reference's length,
+/// walking from the root, and every node out of the bell ([`Solid::keep_out`]: where the
+/// slice itself draws a node in the wall, only out of the cavity; the guides carry what
+/// the slice cannot see, not a second opinion on what it can).
+fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid) {
+    offsets[0] = Vec3::ZERO;
+    let mut previous = reference[0];
+    for m in 1..reference.len() {
+        let length = reference[m].distance(reference[m - 1]);
+        let drawn = reference[m] + offsets[m];
+        let along = (drawn - previous)
+            .try_normalize()
+            .unwrap_or_else(|| (reference[m] - reference[m - 1]).normalize_or(Vec3::NEG_Y));
+        let placed = solid.keep_out(previous + along * length, reference[m]);
+        offsets[m] = placed - reference[m];
+        previous = placed;
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,165 @@
+use super::*;
+use glam::Vec2;
+
+const LENGTH: f32 = 0.015;
+
+/// One guide hanging straight down from a margin 20 mm from the axis.
+fn reference() -> Vec<Vec3> {
+    (0..GUIDE_NODES)
+        .map(|m| Vec3::new(0.02, -LENGTH * m as f32 / (GUIDE_NODES - 1) as f32, 0.0))
+        .collect()
+}
+
+/// A dome 40 mm across and 10 mm high, aperture at y = 0.
+fn solid() -> Solid {
+    let bell: Vec<Vec2> = (0..=20)
+        .map(|k| {
+            let t = std::f32::consts::PI * (1.0 - k as f32 / 20.0);
+            Vec2::new(0.02 * t.cos(), 0.01 * t.sin())
+        })
+        .collect();
+    let mut solid = Solid::default();
+    solid.rebuild(&bell, Vec2::ZERO, &crate::species::Species::aurelia());
+    solid
+}
+
+fn filament() -> Filament {
+    Filament::of(&crate::species::Species::aurelia(), 0.01)
+}
+
+/// Steps one guide `steps` times in uniform water.
+fn run(chains: &mut GuideChains, water: Vec3, towing: f32, steps: usize) {
+    let (reference, solid) = (reference(), solid());
+    let water = vec![water; GUIDE_NODES];
+    for _ in 0..steps {
+        chains.step(&GuideStep {
+            dt: 1.0 / 36.0,
+            reference: &reference,
+            water: &water,
+            towing,
+            filament: filament(),
+            solid: &solid,
+        });
+    }
+}
+
+/// The drawn tip's direction from the root.
+fn direction(chains: &GuideChains) -> Vec3 {
+    let r = reference();
+    let tip = r[GUIDE_NODES - 1] + chains.offsets()[GUIDE_NODES - 1];
+    (tip - r[0]).normalize()
+}
+
+fn degrees(a: Vec3, b: Vec3) -> f32 {
+    a.angle_between(b).to_degrees()
+}
+
+#[test]
+fn in_water_the_slice_sees_the_guides_are_drawn_where_the_slice_draws_them() {
+    let mut chains = GuideChains::new(1);
+    run(&mut chains, Vec3::ZERO, 0.01, 500);
+    assert!(chains.offsets().iter().all(|d| *d == Vec3::ZERO));
+}
+
+#[test]
+fn a_towed_guide_settles_along_the_relative_stream() {
+    // Towed at W, a cross stream V: the tentacle lies along (V, −W), where its drag
+    // balances its tension.
+    for (cross, towing) in [(0.004, 0.01), (0.01, 0.01), (0.01, 0.004)] {
+        let mut chains = GuideChains::new(1);
+        run(&mut chains, Vec3::new(0.0, 0.0, cross), towing, 400);
+        let expected = Vec3::new(0.0, -towing, cross).normalize();
+        let angle = degrees(direction(&chains), expected);
+        println!("V {cross}, W {towing}: {angle:.3}°");
+        assert!(
+            angle < 0.5,
+            "V {cross}, W {towing}: {angle:.2}° from the stream, at {}",
+            direction(&chains)
+        );
+        let mut steady = GuideChains::new(1);
+        steady.steady(
+            &reference(),
+            &[Vec3::new(0.0, 0.0, cross)],
+            towing,
+            &solid(),
+        );
+        assert!(degrees(direction(&steady), expected) < 0.5);
+    }
+}
+
+#[test]
+fn an_untowed_guide_is_carried_off_by_the_stream() {
+    let mut chains = GuideChains::new(1);
+    run(&mut chains, Vec3::new(0.0, 0.0, -0.01), 0.0, 300);
+    let angle = degrees(direction(&chains), Vec3::NEG_Z);
+    assert!(angle < 5.0, "{angle:.2}° from the stream");
+}
+
+#[test]
+fn the_drawn_chain_keeps_its_length() {
+    let mut chains = GuideChains::new(1);
+    // Streams that carry the fringe away from the bell (the solid, not the length, wins
+    // where a node would enter it).
+    for water in [Vec3::new(0.03, 0.0, 0.01), Vec3::new(0.0, -0.02, -0.05)] {
+        run(&mut chains, water, 0.005, 50);
+        let r = reference();
+        for m in 1..GUIDE_NODES {
+            let a = r[m - 1] + chains.offsets()[m - 1];
+            let b = r[m] + chains.offsets()[m];
+            let (drawn, rest) = (a.distance(b), r[m - 1].distance(r[m]));
+            assert!(
+                (drawn - rest).abs() < 1e-6 * LENGTH,
+                "{drawn} against {rest}"
+            );
+        }
+    }
+}
+
+#[test]
+fn no_node_enters_the_bell() {
+    // Water streaming in through the aperture and up into the bell.
+    let mut chains = GuideChains::new(1);
+    let solid = solid();
+    for water in [Vec3::new(-0.03, 0.03, 0.0), Vec3::new(0.0, 0.05, 0.0)] {
+        run(&mut chains, water, 0.0, 200);
+        let r = reference();
+        for m in 0..GUIDE_NODES {
+            let p = r[m] + chains.offsets()[m];
+            assert!(!solid.contains(p), "node {m} at {p} inside");
+        }
+    }
+}
+
+#[test]
+fn after_a_turn_the_fringe_lags_then_is_towed_back_into_line() {
+    let mut chains = GuideChains::new(1);
+    run(&mut chains, Vec3::ZERO, 0.01, 5);
+    // The body turns a right angle about z: in its new frame the water-held tentacle
+    // points along the old downward direction, now +x or −x.
+    chains.turn_frame(Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+    let lagging = degrees(direction(&chains), Vec3::NEG_Y);
+    assert!(lagging > 60.0, "only {lagging:.1}° behind after the turn");
+    // Towed at 10 mm/s, a 15 mm tentacle is back within 10° in about three lengths.
+    run(&mut chains, Vec3::ZERO, 0.01, 4 * 36);
+    let back = degrees(direction(&chains), Vec3::NEG_Y);
+    assert!(back < 10.0, "still {back:.1}° off after 4 s of towing");
+}
+
+#[test]
+fn a_small_move_drags_the_fringe_and_a_jump_resets_it() {
+    let mut chains = GuideChains::new(1);
+    run(&mut chains, Vec3::ZERO, 0.0, 1);
+    // The body moved 5 mm along +z: the nodes stay, so in the body they fall behind.
+    chains.move_frame(|p| p - Vec3::Z * 0.005, LENGTH, &solid());
+    assert!(chains.offsets()[GUIDE_NODES - 1].z < -0.001);
+    chains.move_frame(|p| p - Vec3::Z * 1.0, LENGTH, &solid());
+    assert!(chains.offsets().iter().all(|d| *d == Vec3::ZERO));
+}
+
+#[test]
+fn the_filament_answers_the_water_within_a_stroke() {
+    // A hair-thin tentacle follows its water in a fraction of a stroke: its inertia shows
+    // in a turn, never as a swing of its own.
+    let tau = filament().response_time();
+    assert!(tau > 1e-3 && tau < 0.2, "{tau} s");
+}

@@ -1,0 +1,43 @@
+//! The guides as the surface reads them: an offset at any angle around the margin and any
+//! fraction of a tentacle's length, bilinear between the guides and their nodes.
+
+use super::GUIDE_NODES;
+use glam::Vec3;
+use std::f32::consts::TAU;
+
+/// The guide chains' offsets from where the slice draws the fringe, `guides ×
+/// GUIDE_NODES` (body frame, m); empty where the fringe follows the slice alone.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Trail<'a> {
+    /// Guide by guide, root first.
+    pub offsets: &'a [Vec3],
+}
+
+impl Trail<'_> {
+    /// No guides: the fringe as the slice draws it.
+    pub const NONE: Trail<'static> = Trail { offsets: &[] };
+
+    /// Guides around the margin.
+    pub fn guides(&self) -> usize {
+        self.offsets.len() / GUIDE_NODES
+    }
+
+    /// The offset of a tentacle at angle `sigma` around the axis, `fraction` of the way
+    /// from its root (0) to the tip of its chain (1). The packed shape's
+    /// `trail_offset` and the vertex shader's are this function.
+    pub fn at(&self, sigma: f32, fraction: f32) -> Vec3 {
+        let guides = self.guides();
+        if guides == 0 {
+            return Vec3::ZERO;
+        }
+        let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
+        let g = (around as usize).min(guides - 1);
+        let (w, next) = (around - g as f32, (g + 1) % guides);
+        let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
+        let m = (along as usize).min(GUIDE_NODES - 2);
+        let v = along - m as f32;
+        let node = |g: usize, m: usize| self.offsets[g * GUIDE_NODES + m];
+        let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
+        on(g) + (on(next) - on(g)) * w
+    }
+}

@@ -1,0 +1,304 @@
+//! The fringe in the 3D water, through the real plugin: guide chains trail downstream of a
+//! jellyfish the water flows past and lie still where it is carried, lag a turn and are
+//! towed back into line, never enter the bell, replay bit for bit however time is split
+//! into frames, and trail at every level of detail.
+
+use crate::common::app::Headless;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::{
+    AmbientWater, DetailLevels, JellyfishSlice, Resting, TentacleGuides, Tier,
+};
+use bevy_jellyfish::sim::guides::GUIDE_NODES;
+use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
+use std::time::Duration;
+
+/// World units per metre: the aquarium's scale.
+const SCALE: f32 = 30.0;
+
+fn app() -> App {
+    Headless::default().build(|_| {})
+}
+
+/// Aurelia with a light mesh (16 tentacles, 8 guides) for the debug build.
+fn species() -> Species {
+    Species {
+        tentacle_count: 16,
+        ..Species::aurelia()
+    }
+}
+
+fn spawn(app: &mut App, species: &Species, at: Vec3, extra: impl Bundle) -> Entity {
+    let h = app
+        .world_mut()
+        .resource_mut::<Assets<Species>>()
+        .add(species.clone());
+    app.world_mut()
+        .spawn((
+            Jellyfish::new(h).with_phase(0.0).with_seed(3),
+            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
+            extra,
+        ))
+        .id()
+}
+
+fn guides(app: &App, e: Entity) -> &TentacleGuides {
+    app.world().get::<TentacleGuides>(e).unwrap()
+}
+
+/// Each guide's root-to-tip direction as drawn, and as the slice alone draws it, world.
+fn tip_directions(app: &App, e: Entity) -> Vec<(Vec3, Vec3)> {
+    let g = guides(app, e);
+    let rotation = app.world().get::<Transform>(e).unwrap().rotation;
+    let world = |v: Vec3| (rotation * v).normalize();
+    (0..g.guides())
+        .map(|k| {
+            let drawn: Vec<Vec3> = g.drawn(k).collect();
+            let reference = &g.reference()[k * GUIDE_NODES..(k + 1) * GUIDE_NODES];
+            let (root, tip) = (drawn[0], drawn[drawn.len() - 1]);
+            let reference = reference[reference.len() - 1] - reference[0];
+            (world(tip - root), world(reference))
+        })
+        .collect()
+}
+
+fn degrees(a: Vec3, b: Vec3) -> f32 {
+    a.angle_between(b).to_degrees()
+}
+
+/// Runs `frames` frames, putting the jellyfish back where it was after each one (a game
+/// holding it on a tether) when `hold` is set.
+fn run(app: &mut App, e: Entity, frames: usize, hold: Option<Vec3>) {
+    for _ in 0..frames {
+        app.update();
+        if let Some(at) = hold {
+            app.world_mut().get_mut::<Transform>(e).unwrap().translation = at;
+        }
+    }
+}
+
+#[test]
+fn a_cross_current_trails_the_fringe_downstream_at_the_drag_balance() {
+    let current = Vec3::new(0.3, 0.0, -0.2);
+    let mut app = app();
+    app.insert_resource(AmbientWater::uniform(current));
+    // Held against the current, the bell at rest: the water streams past at the current's
+    // speed and nothing tows the fringe back, so each tentacle lies along the stream, where
+    // its drag balances its tension (a tentacle is as dense as the water: no weight).
+    let held = spawn(&mut app, &species(), Vec3::ZERO, Resting);
+    // Carried by the same current, swimming: no water streams past the fringe but its own
+    // wake, which the slice draws.
+    let free = spawn(&mut app, &species(), Vec3::new(5.0, 0.0, 0.0), ());
+    run(&mut app, held, 4 * 60, Some(Vec3::ZERO));
+    assert_eq!(guides(&app, held).guides(), 8);
+    for (k, (drawn, _)) in tip_directions(&app, held).into_iter().enumerate() {
+        let angle = degrees(drawn, current);
+        println!("held, guide {k}: {angle:.2}° from the stream");
+        assert!(angle < 5.0, "guide {k} is {angle:.1}° from the stream");
+    }
+    let length = species().tentacle_length;
+    let drift = guides(&app, free)
+        .offsets()
+        .iter()
+        .map(|d| d.length())
+        .fold(0.0, f32::max);
+    println!(
+        "carried: offsets at most {:.2}% of a tentacle",
+        100.0 * drift / length
+    );
+    assert!(drift <= 0.05 * length, "a carried fringe moved {drift} m");
+}
+
+#[test]
+fn after_a_right_angle_turn_the_tips_lag_then_trail_the_new_axis() {
+    let s = species();
+    let mut app = app();
+    let e = spawn(&mut app, &s, Vec3::ZERO, ());
+    let stroke = (s.period() * 60.0).round() as usize;
+    run(&mut app, e, 3 * stroke, None);
+    let aligned = worst_lag(&app, e);
+    assert!(aligned < 5.0, "already {aligned:.1}° off before the turn");
+    // The game turns it a right angle: the water holds the fringe where it was.
+    let mut t = *app.world().get::<Transform>(e).unwrap();
+    t.rotate_z(std::f32::consts::FRAC_PI_2);
+    app.world_mut().entity_mut(e).insert(t);
+    run(&mut app, e, 1, None);
+    let lag = mean_lag(&app, e);
+    println!("just after the turn: {lag:.1}° behind on average");
+    assert!(lag > 45.0, "only {lag:.1}° behind after a right-angle turn");
+    let mut worst = Vec::new();
+    for _ in 0..3 {
+        run(&mut app, e, stroke, None);
+        worst.push(worst_lag(&app, e));
+    }
+    println!("after one, two and three strokes: {worst:.1?}° at worst");
+    assert!(
+        worst[2] < 10.0,
+        "still {:.1}° off after three strokes",
+        worst[2]
+    );
+}
+
+fn lags(app: &App, e: Entity) -> Vec<f32> {
+    tip_directions(app, e)
+        .into_iter()
+        .map(|(drawn, reference)| degrees(drawn, reference))
+        .collect()
+}
+
+fn mean_lag(app: &App, e: Entity) -> f32 {
+    let l = lags(app, e);
+    l.iter().sum::<f32>() / l.len() as f32
+}
+
+fn worst_lag(app: &App, e: Entity) -> f32 {
+    lags(app, e).into_iter().fold(0.0, f32::max)
+}
+
+/// A current that turns through every direction, up through the aperture included.
+fn sweeping_water() -> AmbientWater {
+    AmbientWater::from_fn(|p, t| {
+        let w = 0.9 * t as f32;
+        Vec3::new(w.sin(), 1.5 * w.cos(), (0.7 * w).cos()) * 0.4 + Vec3::X * 0.05 * p.y
+    })
+}
+
+#[test]
+fn no_guide_node_enters_the_bell_in_a_thousand_strokes() {
+    let s = species();
+    // Big frames: the slice and the guides take the same fixed steps at any frame rate.
+    let mut app = Headless {
+        frame: Duration::from_secs_f64(0.125),
+        ..default()
+    }
+    .build(|_| {});
+    app.insert_resource(sweeping_water());
+    let e = spawn(&mut app, &s, Vec3::ZERO, ());
+    let frames = (1000.0 * s.period() / 0.125) as usize;
+    let (mut checked, mut moved) = (0, 0.0f32);
+    for _ in 0..frames {
+        run(&mut app, e, 1, Some(Vec3::ZERO));
+        let sim = app.world().get::<JellyfishSlice>(e).unwrap().sim().unwrap();
+        let bell = sim.bell_points();
+        let centroid = bell.iter().sum::<Vec2>() / bell.len() as f32;
+        let outline: Vec<Vec2> = bell.iter().map(|p| *p - centroid).collect();
+        let g = guides(&app, e);
+        for k in 0..g.guides() {
+            // The root is pinned to the margin, on the outline itself.
+            for (m, p) in g.drawn(k).enumerate().skip(1) {
+                let meridian = Vec2::new(Vec2::new(p.x, p.z).length(), p.y);
+                assert!(
+                    !inside(&outline, meridian),
+                    "guide {k} node {m} inside the bell at {p} (stroke {})",
+                    sim.cycle()
+                );
+                checked += 1;
+            }
+        }
+        moved = moved.max(g.offsets().iter().map(|d| d.length()).fold(0.0, f32::max));
+    }
+    println!("{checked} nodes checked over {frames} frames; offsets up to {moved:.4} m");
+    assert!(
+        moved > 0.3 * s.tentacle_length,
+        "the water never moved the fringe"
+    );
+}
+
+/// Even–odd rule on the closed outline.
+fn inside(outline: &[Vec2], p: Vec2) -> bool {
+    let n = outline.len();
+    let mut odd = false;
+    for k in 0..n {
+        let (a, b) = (outline[k], outline[(k + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            odd = !odd;
+        }
+    }
+    odd
+}
+
+/// Guide offsets and transform after two seconds of frames of `frame` seconds.
+fn split_run(frame: f64) -> (Vec<Vec3>, Transform) {
+    let mut app = app();
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+        frame,
+    )));
+    app.insert_resource(sweeping_water());
+    let e = spawn(&mut app, &species(), Vec3::ZERO, ());
+    app.update(); // the clock's first update has no delta
+    run(&mut app, e, (2.0 / frame).round() as usize, None);
+    (
+        guides(&app, e).offsets().to_vec(),
+        *app.world().get::<Transform>(e).unwrap(),
+    )
+}
+
+#[test]
+fn in_moving_water_a_run_split_into_other_frames_is_identical() {
+    let (a, ta) = split_run(1.0 / 64.0);
+    let (b, tb) = split_run(1.0 / 32.0);
+    let (c, tc) = split_run(1.0 / 8.0);
+    assert!(
+        a.iter().any(|d| d.length() > 1e-4),
+        "the water moved nothing"
+    );
+    assert_eq!(a, b, "1/64 s against 1/32 s frames");
+    assert_eq!(a, c, "1/64 s against 1/8 s frames");
+    assert_eq!((ta, tb), (tb, tc));
+}
+
+#[test]
+fn in_still_water_the_fringe_is_drawn_as_the_slice_draws_it() {
+    let s = species();
+    let mut app = app();
+    let e = spawn(&mut app, &s, Vec3::ZERO, ());
+    let mut worst = 0.0f32;
+    for _ in 0..(10.0 * s.period() * 60.0) as usize {
+        run(&mut app, e, 1, None);
+        let g = guides(&app, e);
+        let tips = g
+            .offsets()
+            .chunks_exact(GUIDE_NODES)
+            .map(|d| d[GUIDE_NODES - 1]);
+        worst = tips.map(|d| d.length()).fold(worst, f32::max);
+    }
+    // What moves them at all: the slice's own drawing puts a node a hair inside the bell
+    // at some angles between its two chains, and the guides keep theirs out.
+    let share = worst / s.tentacle_length;
+    println!(
+        "still water: tips at most {:.2}% of a tentacle off",
+        100.0 * share
+    );
+    assert!(share <= 0.05, "a tip {worst} m off");
+}
+
+#[test]
+fn far_jellyfish_trail_their_fringe_in_a_shear() {
+    let mut app = app();
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+        near: 0,
+        mid: 0,
+        ..default()
+    };
+    // A strain (no vorticity, so nothing turns the bell): the water below the bell runs
+    // towards −x, and the fringe hanging into it is swept there, the bell riding the still
+    // water at its own depth.
+    app.insert_resource(AmbientWater::from_fn(|p, _| 2.0 * Vec3::new(p.y, p.x, 0.0)));
+    let e = spawn(&mut app, &species(), Vec3::ZERO, Resting);
+    run(&mut app, e, 60, Some(Vec3::ZERO));
+    assert_eq!(
+        app.world().get::<JellyfishSlice>(e).unwrap().tier(),
+        Tier::Far
+    );
+    let tips = tip_directions(&app, e);
+    for (k, (drawn, reference)) in tips.iter().enumerate() {
+        println!("guide {k}: drawn {drawn:.2}, the slice's {reference:.2}");
+        assert!(drawn.x <= reference.x + 0.01, "guide {k} pushed upstream");
+    }
+    let mean = |f: fn(&(Vec3, Vec3)) -> f32| tips.iter().map(f).sum::<f32>() / tips.len() as f32;
+    let (drawn, reference) = (mean(|t| t.0.x), mean(|t| t.1.x));
+    assert!(
+        drawn < reference - 0.3,
+        "the fringe not swept downstream: x {drawn:.2} against the slice's {reference:.2}"
+    );
+}
