@@ -13,6 +13,8 @@ pub struct Solid {
     cavity: Vec<Vec2>,
     whole: Vec<Vec2>,
     normals: Vec<Vec2>,
+    /// The whole bell's bounding box in the meridian: most nodes hang below it.
+    bounds: (Vec2, Vec2),
     /// How far outside an outline a node is put back: a thousandth of the span.
     clearance: f32,
 }
@@ -37,12 +39,24 @@ impl Solid {
         }
         self.whole.push(bell[n - 1] - origin);
         self.whole.push(bell[0] - origin);
+        let (lo, hi) = self.whole.iter().chain(&self.cavity).fold(
+            (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        // The meridian's radius is never negative: the box spans the wider side.
+        self.bounds = (Vec2::new(0.0, lo.y), Vec2::new(hi.x.max(-lo.x), hi.y));
         self.clearance = 1e-3 * bell[0].distance(bell[n - 1]);
     }
 
     /// Whether the body-frame point `p` lies inside the bell, wall or cavity.
     pub fn contains(&self, p: Vec3) -> bool {
-        inside(&self.whole, meridian(p))
+        self.near(meridian(p)) && inside(&self.whole, meridian(p))
+    }
+
+    /// Whether a meridian point lies within the bell's bounding box.
+    fn near(&self, q: Vec2) -> bool {
+        let (lo, hi) = self.bounds;
+        q.cmpge(lo).all() && q.cmple(hi).all()
     }
 
     /// Where a node the slice draws at `reference` may be drawn instead of `p`: outside
@@ -55,7 +69,7 @@ impl Solid {
         } else {
             &self.whole
         };
-        if !inside(outline, meridian(p)) {
+        if !(self.near(meridian(p)) && inside(outline, meridian(p))) {
             return p;
         }
         let placed = nearest_outside(outline, meridian(p), self.clearance);
