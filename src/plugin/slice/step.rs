@@ -48,7 +48,7 @@ pub(super) fn step_slices(
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
     jellyfish.par_iter_mut().for_each(
-        |(entity, mut slice, mut history, mut motion, guides, transform, steering, resting)| {
+        |(entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting)| {
             let slice = &mut *slice;
             let Some(clock) = slice.clock() else {
                 return;
@@ -71,7 +71,6 @@ pub(super) fn step_slices(
                     travel: &travel,
                     events: &events,
                 };
-                let mut guides = guides;
                 step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
                 timings.add_simulation(start.elapsed());
             }
@@ -190,9 +189,7 @@ impl Step<'_> {
             motion.swim_speed = (motion.swum - swum_before) * self.travel.scale.y / stepped;
         }
     }
-}
 
-impl Step<'_> {
     /// What the guides need of the step just taken: `shape` is the bell, the two tentacle
     /// chains and the bell's centroid after it.
     fn guide_frame<'a>(
