@@ -90,7 +90,8 @@ impl Species {
     /// Guide chains the fringe is drawn with: `tentacle_guides`, at most one per tentacle,
     /// none without a fringe.
     pub fn guide_count(&self) -> usize {
-        if self.tentacle_count == 0 || !(self.tentacle_length > 0.0) {
+        let hanging = self.tentacle_length > 0.0; // false for NaN too
+        if self.tentacle_count == 0 || !hanging {
             return 0;
         }
         self.tentacle_guides.min(self.tentacle_count) as usize

@@ -156,7 +156,8 @@ impl GuideChains {
             return;
         }
         let jump = to_body(Vec3::ZERO).length();
-        if !(jump <= TELEPORT_LENGTHS * length) {
+        let near = jump <= TELEPORT_LENGTHS * length; // false for NaN too
+        if !near {
             self.reset();
             return;
         }
@@ -185,7 +186,8 @@ impl GuideChains {
     /// root and kept out of the bell. A step with the wrong number of points is skipped.
     pub fn step(&mut self, s: &GuideStep) {
         let n = self.offsets.len();
-        if s.reference.len() != n || s.water.len() != n || !(s.dt > 0.0) {
+        let positive = s.dt > 0.0; // false for NaN too
+        if s.reference.len() != n || s.water.len() != n || !positive {
             return;
         }
         let (dt, towing) = (s.dt, s.towing.max(0.0));
@@ -226,13 +228,13 @@ impl GuideChains {
         }
         // Below a tenth of a millimetre a second the fringe is simply carried off.
         let towing = towing.max(1e-4);
-        for g in 0..self.guides {
+        for (g, water) in water.iter().enumerate() {
             let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
             let reference = &reference[range.clone()];
             let step = length(reference) / (GUIDE_NODES - 1) as f32;
             let offsets = &mut self.offsets[range.clone()];
             for (m, d) in offsets.iter_mut().enumerate() {
-                *d = water[g] * (m as f32 * step / towing);
+                *d = *water * (m as f32 * step / towing);
             }
             inextensible(reference, offsets, solid);
             self.velocity[range].fill(Vec3::ZERO);

@@ -122,9 +122,8 @@ fn no_node_enters_the_bell() {
     let solid = solid();
     for water in [Vec3::new(-0.03, 0.03, 0.0), Vec3::new(0.0, 0.05, 0.0)] {
         run(&mut chains, water, 0.0, 200);
-        let r = reference();
-        for m in 0..GUIDE_NODES {
-            let p = r[m] + chains.offsets()[m];
+        for (m, (r, d)) in reference().iter().zip(chains.offsets()).enumerate() {
+            let p = *r + *d;
             assert!(!solid.contains(p), "node {m} at {p} inside");
         }
     }
