@@ -27,7 +27,12 @@ pub struct TentacleGuides {
     solid: Solid,
     /// Tentacle length the guides were made for, m.
     length: f32,
+    /// Steps since a far jellyfish's trailing was last worked out.
+    since_refresh: u32,
 }
+
+/// A far jellyfish works out its steady trailing every this many steps.
+const FAR_REFRESH: u32 = 4;
 
 /// One slice step as the guides see it.
 pub(crate) struct GuideFrame<'a> {
@@ -89,15 +94,13 @@ impl TentacleGuides {
             self.reference.clear();
             return;
         }
-        let roots = [f.bell[0], f.bell[f.bell.len() - 1]];
-        guide_reference(f.tentacles, roots, f.centroid, guides, &mut self.reference);
-        self.solid.rebuild(f.bell, f.centroid, f.species);
         // The body turned in the step; the water holds the nodes where they were.
         let turn = f.before.rotation.inverse() * f.after.rotation;
         self.chains.turn_frame(turn.normalize());
         let towing = (f.surge / f.dt).max(0.0);
         match steady {
             None => {
+                self.refresh_shape(f);
                 self.read_water(f, |_| true);
                 self.chains.step(&GuideStep {
                     dt: f.dt,
@@ -108,38 +111,68 @@ impl TentacleGuides {
                     solid: &self.solid,
                 });
             }
-            Some(mean) => {
-                // One reading per guide, halfway down it.
-                self.read_water(f, |m| m == GUIDE_NODES / 2);
-                self.halfway.clear();
-                let halfway = self.water.chunks(GUIDE_NODES).map(|w| w[GUIDE_NODES / 2]);
-                self.halfway.extend(halfway);
-                self.chains
-                    .steady(&self.reference, &self.halfway, mean, &self.solid);
-            }
+            Some(mean) => self.trail_steadily(f, mean),
         }
+    }
+
+    /// A far jellyfish's steady trailing in the water halfway down each guide, towed at
+    /// `mean` m/s: worked out every [`FAR_REFRESH`] steps (the current changes slowly; the
+    /// offsets ride on the replayed shape between), and not at all where the water there
+    /// would move a tip by less than a hundredth of a tentacle.
+    fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
+        self.since_refresh += 1;
+        if self.since_refresh < FAR_REFRESH && !self.reference.is_empty() {
+            return;
+        }
+        self.since_refresh = 0;
+        let s = f.species;
+        let guides = self.chains.guides();
+        // Where the species hangs each guide's middle at rest, about the bell's centroid.
+        let (radius, depth) = (0.5 * s.diameter, 0.4 * s.height + 0.5 * s.tentacle_length);
+        let probe = |g: usize| {
+            let (sin, cos) = GuideChains::angle(g, guides).sin_cos();
+            Vec3::new(radius * cos, -depth, radius * sin)
+        };
+        let negligible = 0.01 * mean.max(1e-4);
+        let carrying = carrying(f);
+        let calm = (0..guides).all(|g| relative_water(f, carrying, probe(g)).length() < negligible);
+        if calm {
+            self.chains.reset();
+            if self.reference.is_empty() {
+                self.refresh_shape(f);
+            }
+            return;
+        }
+        self.refresh_shape(f);
+        self.read_water(f, |m| m == GUIDE_NODES / 2);
+        self.halfway.clear();
+        let halfway = self.water.chunks(GUIDE_NODES).map(|w| w[GUIDE_NODES / 2]);
+        self.halfway.extend(halfway);
+        self.chains
+            .steady(&self.reference, &self.halfway, mean, &self.solid);
+    }
+
+    /// Where the slice draws the guides now, and the bell as a solid.
+    fn refresh_shape(&mut self, f: &GuideFrame) {
+        let roots = [f.bell[0], f.bell[f.bell.len() - 1]];
+        let guides = self.chains.guides();
+        guide_reference(f.tentacles, roots, f.centroid, guides, &mut self.reference);
+        self.solid.rebuild(f.bell, f.centroid, f.species);
     }
 
     /// The water at the nodes `wanted` picks (by index along the guide) relative to the
     /// current carrying the bell, body frame, m/s; zero elsewhere and where the field is
     /// not finite.
     fn read_water(&mut self, f: &GuideFrame, wanted: impl Fn(usize) -> bool) {
-        let (pose, scale) = (f.after, f.scale);
-        let inverse = pose.rotation.inverse();
-        let carrying = finite(f.water.velocity(pose.position, f.time));
+        let carrying = carrying(f);
         self.water.clear();
         let offsets = self.chains.offsets();
         for (k, q) in self.reference.iter().enumerate() {
-            if !wanted(k % GUIDE_NODES) {
-                self.water.push(Vec3::ZERO);
-                continue;
-            }
             let local = *q + offsets.get(k).copied().unwrap_or_default();
-            let world = pose.position + pose.rotation * (scale * local);
-            let relative = finite(f.water.velocity(world, f.time)) - carrying;
-            let body = inverse * relative / scale;
-            self.water
-                .push(if body.is_finite() { body } else { Vec3::ZERO });
+            self.water.push(match wanted(k % GUIDE_NODES) {
+                true => relative_water(f, carrying, local),
+                false => Vec3::ZERO,
+            });
         }
     }
 
@@ -153,6 +186,20 @@ impl TentacleGuides {
         };
         self.chains.move_frame(to_body, self.length, &self.solid);
     }
+}
+
+/// The current carrying the bell, world units per second.
+fn carrying(f: &GuideFrame) -> Vec3 {
+    finite(f.water.velocity(f.after.position, f.time))
+}
+
+/// The water at the body-frame point `local` less the current `carrying` the bell, body
+/// frame, m/s (zero where the field is not finite).
+fn relative_water(f: &GuideFrame, carrying: Vec3, local: Vec3) -> Vec3 {
+    let (pose, scale) = (f.after, f.scale);
+    let world = pose.position + pose.rotation * (scale * local);
+    let relative = finite(f.water.velocity(world, f.time)) - carrying;
+    finite(pose.rotation.inverse() * relative / scale)
 }
 
 fn finite(v: Vec3) -> Vec3 {
