@@ -91,6 +91,7 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "tentacle_cross_section" => s.tentacle_cross_section = v,
         "tentacle_radius" => s.tentacle_radius = v,
         "tentacle_length_spread" => s.tentacle_length_spread = v,
+        "tentacle_guides" => s.tentacle_guides = count(value),
         "manubrium_length" => s.manubrium_length = v,
         "manubrium_radius" => s.manubrium_radius = v,
         "oral_arm_count" => s.oral_arm_count = count(value),
