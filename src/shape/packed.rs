@@ -362,21 +362,13 @@ fn trail_offset(b: Block, sigma: f32, fraction: f32) -> Vec3 {
         0
     };
     let start = trail_start(b.rings(), b.count(H_POINTS), oral);
-    let node = |g: usize, m: usize| {
+    crate::sim::guides::between(guides, sigma, fraction, |g, m| {
         if m == 0 {
             return Vec3::ZERO;
         }
         let at = start + (g * (GUIDE_NODES - 1) + m - 1) * TRAIL;
         Vec3::new(b.0[at], b.0[at + 1], b.0[at + 2])
-    };
-    let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
-    let g = (around as usize).min(guides - 1);
-    let (w, next) = (around - g as f32, (g + 1) % guides);
-    let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
-    let m = (along as usize).min(GUIDE_NODES - 2);
-    let v = along - m as f32;
-    let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
-    on(g) + (on(next) - on(g)) * w
+    })
 }
 
 /// Where a vertex of a run of tubes lies: tube `tube`, ring `ring` along it, and on the

@@ -25,7 +25,7 @@ mod solid;
 mod trail;
 
 pub use solid::Solid;
-pub use trail::Trail;
+pub use trail::{Trail, between};
 
 use crate::species::Species;
 use glam::{Quat, Vec3};

@@ -26,18 +26,29 @@ impl Trail<'_> {
     /// from its root (0) to the tip of its chain (1). The packed shape's
     /// `trail_offset` and the vertex shader's are this function.
     pub fn at(&self, sigma: f32, fraction: f32) -> Vec3 {
-        let guides = self.guides();
-        if guides == 0 {
-            return Vec3::ZERO;
-        }
-        let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
-        let g = (around as usize).min(guides - 1);
-        let (w, next) = (around - g as f32, (g + 1) % guides);
-        let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
-        let m = (along as usize).min(GUIDE_NODES - 2);
-        let v = along - m as f32;
-        let node = |g: usize, m: usize| self.offsets[g * GUIDE_NODES + m];
-        let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
-        on(g) + (on(next) - on(g)) * w
+        between(self.guides(), sigma, fraction, |g, m| {
+            self.offsets[g * GUIDE_NODES + m]
+        })
     }
+}
+
+/// Bilinear between `guides` guides' nodes (`node(g, m)`) at angle `sigma` and `fraction`
+/// of the way down: what [`Trail::at`] and the packed shape's CPU mirror both read.
+pub fn between(
+    guides: usize,
+    sigma: f32,
+    fraction: f32,
+    node: impl Fn(usize, usize) -> Vec3,
+) -> Vec3 {
+    if guides == 0 {
+        return Vec3::ZERO;
+    }
+    let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
+    let g = (around as usize).min(guides - 1);
+    let (w, next) = (around - g as f32, (g + 1) % guides);
+    let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
+    let m = (along as usize).min(GUIDE_NODES - 2);
+    let v = along - m as f32;
+    let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
+    on(g) + (on(next) - on(g)) * w
 }
