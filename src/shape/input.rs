@@ -65,7 +65,8 @@ pub fn check(view: &SliceView, species: &Species, time: f32) -> Result<(), Shape
             return Err(ShapeError::NonFinitePoint(name));
         }
     }
-    if !view.trail.offsets.iter().all(|d| d.is_finite()) {
+    let mut trails = view.trail.offsets.iter().chain(view.oral_trail.offsets);
+    if !trails.all(|d| d.is_finite()) {
         return Err(ShapeError::NonFinitePoint("trail"));
     }
     let s = species;

@@ -27,6 +27,8 @@ pub struct Resolution {
     pub oral: TentacleLayout,
     /// Guide chains the tentacles bend between (`Species::guide_count`).
     pub guides: usize,
+    /// Guide chains of the oral tubes, one per tube or none (`Species::oral_guide_count`).
+    pub oral_guides: usize,
 }
 
 impl Resolution {
@@ -47,7 +49,8 @@ impl Resolution {
             ((n as f32 * scale).round() as usize).clamp(lo as usize, hi as usize)
         };
         let rings = scaled(species.mesh_rings, 2, 256);
-        let oral = crate::species::limits::oral_tubes(species).min(64);
+        use crate::species::limits::{MAX_DRAWN_ORAL_TUBES, oral_tubes};
+        let oral = oral_tubes(species).min(MAX_DRAWN_ORAL_TUBES);
         Self {
             rings,
             segments: scaled(species.mesh_segments, 3, 512),
@@ -67,6 +70,7 @@ impl Resolution {
                 points: rings + 1,
             },
             guides: species.guide_count().min(16),
+            oral_guides: species.oral_guide_count(),
         }
     }
 
@@ -217,6 +221,7 @@ pub fn build_at(
         res.tentacles.vertex_count(),
         &OralStyle::of(species),
         view.oral_arms,
+        &view.oral_trail,
         view.bell[n / 2],
         &aperture_disc(s.profile.margin()),
         &mut mesh.tentacles,

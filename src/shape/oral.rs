@@ -12,7 +12,8 @@
 use super::buffers::SurfaceBuffers;
 use super::discs::Disc;
 use super::spline::catmull_rom;
-use super::tentacles::{TentacleLayout, across, along, tangent};
+use super::tentacles::{TentacleLayout, across, along, linear, tangent};
+use crate::sim::guides::{GUIDE_NODES, Trail};
 use crate::sim::oral_arms::stalk_fraction;
 use crate::species::Species;
 pub use crate::species::limits::ORAL_SIDES;
@@ -174,6 +175,50 @@ pub fn section_vertex(
     (position, normal)
 }
 
+/// Where the slice draws each oral tube's guide (`sim::guides`): `GUIDE_NODES` points
+/// from the tube's root to its tip, straight along the two oral chains (`apex` standing
+/// in for an empty one), relative to `origin` (the bell's centroid), tube by tube in
+/// `layout`'s order. The manubrium's guide runs down the axis from the apex to the mouth;
+/// an arm's from the mouth, at the arm's angle, to its tip.
+pub fn guide_reference(
+    layout: &TentacleLayout,
+    style: &OralStyle,
+    chains: [&[Vec2]; 2],
+    apex: Vec2,
+    origin: Vec2,
+    out: &mut Vec<Vec3>,
+) {
+    let chains = chains.map(|c| {
+        if c.is_empty() {
+            std::slice::from_ref(&apex)
+        } else {
+            c
+        }
+    });
+    let origin = Vec3::new(origin.x, origin.y, 0.0);
+    let span = |from: f32, to: f32| {
+        let mut radial = Vec2::X;
+        let mut discs = [Disc::through(apex, apex, radial); GUIDE_NODES];
+        for (m, disc) in discs.iter_mut().enumerate() {
+            let f = from + (to - from) * (m as f32 / (GUIDE_NODES - 1) as f32);
+            let at = |c: &[Vec2]| linear(c, f * (c.len() - 1) as f32);
+            *disc = Disc::through(at(chains[0]), at(chains[1]), radial);
+            radial = disc.radial;
+        }
+        discs
+    };
+    let (stalk, arms) = (span(0.0, style.stalk), span(style.stalk, 1.0));
+    out.clear();
+    for t in 0..layout.count {
+        if style.is_manubrium(t) {
+            out.extend(stalk.iter().map(|d| d.centre - origin));
+        } else {
+            let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
+            out.extend(arms.iter().map(|d| d.point((cos, sin)) - origin));
+        }
+    }
+}
+
 /// Per-frame scratch.
 #[derive(Clone, Debug, Default)]
 pub struct OralScratch {
@@ -182,14 +227,16 @@ pub struct OralScratch {
 }
 
 /// Writes the tubes' positions and normals in place, tube `t` starting at vertex
-/// `first + t · per-tube`. `outward` is the aperture's disc: its radial directions orient
-/// the blades.
+/// `first + t · per-tube`, each moved by its own guide's offset in `trail` (none if it
+/// is not one guide per tube). `outward` is the aperture's disc: its radial directions
+/// orient the blades.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn write_surface(
     layout: &TentacleLayout,
     first: usize,
     style: &OralStyle,
     chains: [&[Vec2]; 2],
+    trail: &Trail,
     apex: Vec2,
     outward: &Disc,
     buf: &mut SurfaceBuffers,
@@ -197,6 +244,10 @@ pub(crate) fn write_surface(
 ) {
     let l = layout;
     chain_discs(l, style, chains, apex, &mut s.discs);
+    let trail = match trail.guides() == l.count {
+        true => *trail,
+        false => Trail::NONE,
+    };
     for t in 0..l.count {
         let manubrium = style.is_manubrium(t);
         let (arm, sigma) = if manubrium {
@@ -207,8 +258,10 @@ pub(crate) fn write_surface(
         let (sin, cos) = sigma.sin_cos();
         let radial = outward.direction((cos, sin));
         s.centre.clear();
-        s.centre
-            .extend((0..l.points).map(|m| centre(&s.discs, l, style, t, m)));
+        s.centre.extend(
+            (0..l.points)
+                .map(|m| centre(&s.discs, l, style, t, m) + trail.along(t, fraction(l, m))),
+        );
         for m in 0..l.points {
             let tm = tangent(&s.centre, m);
             let n = across(radial, tm);

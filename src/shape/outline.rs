@@ -22,6 +22,8 @@ pub struct SliceOutline {
     pub oral_arms: [Vec<Vec2>; 2],
     /// The fringe's guide offsets ([`Trail`]); none unless a test sets them.
     pub trail: Vec<Vec3>,
+    /// The oral tubes' guide offsets; none unless a test sets them.
+    pub oral_trail: Vec<Vec3>,
 }
 
 impl SliceOutline {
@@ -72,6 +74,7 @@ impl SliceOutline {
             tentacles,
             oral_arms,
             trail: Vec::new(),
+            oral_trail: Vec::new(),
         }
     }
 
@@ -84,6 +87,9 @@ impl SliceOutline {
             oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
             trail: Trail {
                 offsets: &self.trail,
+            },
+            oral_trail: Trail {
+                offsets: &self.oral_trail,
             },
         }
     }

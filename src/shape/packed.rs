@@ -39,7 +39,8 @@ use layout::*;
 
 /// The length of the block for a resolution.
 pub fn block_len(res: &Resolution) -> usize {
-    trail_start(res.rings, res.tentacles.points, oral_discs(res)) + trail_len(res.guides)
+    let trails = trail_len(res.guides) + trail_len(oral_guides(res));
+    trail_start(res.rings, res.tentacles.points, oral_discs(res)) + trails
 }
 
 /// Where the trail starts: after the header, the rings, the tentacle and the oral discs.
@@ -49,7 +50,15 @@ fn trail_start(rings: usize, points: usize, oral_discs: usize) -> usize {
 
 /// Values of the trail of `guides` guide chains.
 fn trail_len(guides: usize) -> usize {
-    guides * (GUIDE_NODES - 1) * TRAIL
+    guides * TRAIL
+}
+
+/// Guides of the oral tubes in the block: one per tube, or none.
+fn oral_guides(res: &Resolution) -> usize {
+    match res.oral_guides == res.oral.count {
+        true => res.oral_guides,
+        false => 0,
+    }
 }
 
 /// Discs of the manubrium and the arms in the block.
@@ -125,6 +134,7 @@ impl ShapePacker {
         header[H_ARM_FRILL] = style.frill;
         header[H_ARM_WAVES] = style.waves;
         header[H_GUIDES] = bits(res.guides);
+        header[H_ORAL_GUIDES] = bits(oral_guides(&res));
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -157,15 +167,22 @@ impl ShapePacker {
             out.resize(at + DISC, 0.0);
             write_disc(&mut out[at..], disc);
         }
-        // The trail, if the view's guides are the resolution's (else none this frame).
-        let matching = view.trail.guides() == res.guides;
-        for g in 0..res.guides {
-            for m in 1..GUIDE_NODES {
-                let d = match matching {
-                    true => view.trail.offsets[g * GUIDE_NODES + m],
-                    false => Vec3::ZERO,
-                };
-                out.extend_from_slice(&d.to_array());
+        // The trails, where the view's guides are the resolution's (else none this frame),
+        // as halves, two to a value.
+        for (trail, guides) in [
+            (view.trail, res.guides),
+            (view.oral_trail, oral_guides(&res)),
+        ] {
+            let matching = trail.guides() == guides;
+            for g in 0..guides {
+                let nodes = &trail.offsets[(g * GUIDE_NODES + 1).min(trail.offsets.len())..];
+                let mut halves = (0..3 * (GUIDE_NODES - 1)).map(|h| match matching {
+                    true => half::f16::from_f32(nodes[h / 3][h % 3]).to_bits() as u32,
+                    false => 0,
+                });
+                while let (Some(low), Some(high)) = (halves.next(), halves.next()) {
+                    out.push(f32::from_bits(low | high << 16));
+                }
             }
         }
         debug_assert_eq!(out.len() - start, block_len(&res));
@@ -214,6 +231,35 @@ impl Block<'_> {
 
     fn segments(&self) -> usize {
         self.count(H_SEGMENTS)
+    }
+
+    /// Where the trails start: after the oral discs, if any.
+    fn trail_start(&self) -> usize {
+        let oral = if self.count(H_ORAL) > 0 {
+            let layout = TentacleLayout {
+                count: self.count(H_ORAL),
+                sides: ORAL_SIDES,
+                points: self.count(H_ORAL_POINTS),
+            };
+            2 * oral::disc_count(&layout)
+        } else {
+            0
+        };
+        trail_start(self.rings(), self.count(H_POINTS), oral)
+    }
+
+    /// Node `m` of guide `g` of the trail starting at `start` (a root, not stored, is
+    /// zero).
+    fn trail_node(&self, start: usize, g: usize, m: usize) -> Vec3 {
+        if m == 0 {
+            return Vec3::ZERO;
+        }
+        let half = |h: usize| {
+            let value = self.0[start + g * TRAIL + h / 2].to_bits();
+            half::f16::from_bits((value >> (16 * (h % 2))) as u16).to_f32()
+        };
+        let h = 3 * (m - 1);
+        Vec3::new(half(h), half(h + 1), half(h + 2))
     }
 
     /// The unstructured noise QP at latitude coordinate `lat`, angle `cs`.
@@ -351,24 +397,17 @@ fn trail_offset(b: Block, sigma: f32, fraction: f32) -> Vec3 {
     if guides == 0 {
         return Vec3::ZERO;
     }
-    let oral = if b.count(H_ORAL) > 0 {
-        let layout = TentacleLayout {
-            count: b.count(H_ORAL),
-            sides: ORAL_SIDES,
-            points: b.count(H_ORAL_POINTS),
-        };
-        2 * oral::disc_count(&layout)
-    } else {
-        0
-    };
-    let start = trail_start(b.rings(), b.count(H_POINTS), oral);
-    crate::sim::guides::between(guides, sigma, fraction, |g, m| {
-        if m == 0 {
-            return Vec3::ZERO;
-        }
-        let at = start + (g * (GUIDE_NODES - 1) + m - 1) * TRAIL;
-        Vec3::new(b.0[at], b.0[at + 1], b.0[at + 2])
-    })
+    let start = b.trail_start();
+    crate::sim::guides::between(guides, sigma, fraction, |g, m| b.trail_node(start, g, m))
+}
+
+/// The oral tube `t`'s offset `f` of the way down, as `Trail::along` reads its guide.
+fn oral_trail_offset(b: Block, t: usize, f: f32) -> Vec3 {
+    if b.count(H_ORAL_GUIDES) == 0 {
+        return Vec3::ZERO;
+    }
+    let start = b.trail_start() + b.count(H_GUIDES) * TRAIL;
+    crate::sim::guides::along(f, |m| b.trail_node(start, t, m))
 }
 
 /// Where a vertex of a run of tubes lies: tube `tube`, ring `ring` along it, and on the
@@ -461,15 +500,16 @@ fn oral_centre(b: Block, layout: &TentacleLayout, style: &OralStyle, t: usize, m
     let x = oral::fraction(layout, m) * (n - 1) as f32;
     let i = (x as usize).min(n - 2);
     let w = x - i as f32;
+    let trail = oral_trail_offset(b, t, oral::fraction(layout, m));
     if style.is_manubrium(t) {
         let p = b.disc(discs + i * DISC).centre;
         let q = b.disc(discs + (i + 1) * DISC).centre;
-        return p + (q - p) * w;
+        return p + (q - p) * w + trail;
     }
     let (sin, cos) = style.arm_angle(t, layout).1.sin_cos();
     let p = b.disc(discs + (n + i) * DISC).point((cos, sin));
     let q = b.disc(discs + (n + i + 1) * DISC).point((cos, sin));
-    p + (q - p) * w
+    p + (q - p) * w + trail
 }
 
 /// Position and normal of oral tube vertex `index` (counted from the first oral vertex),

@@ -170,7 +170,7 @@ pub fn guide_reference(
 }
 
 /// The point at index `u` of a polyline, straight between its points.
-fn linear(points: &[Vec2], u: f32) -> Vec2 {
+pub(crate) fn linear(points: &[Vec2], u: f32) -> Vec2 {
     let i = (u.max(0.0) as usize).min(points.len().saturating_sub(2));
     match points.get(i + 1) {
         Some(next) => points[i].lerp(*next, u - i as f32),

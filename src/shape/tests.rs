@@ -112,6 +112,7 @@ fn each_pair_has_its_own_axis() {
         tentacles: slice.tentacles.clone().map(|c| c.iter().map(rot).collect()),
         oral_arms: slice.oral_arms.clone().map(|c| c.iter().map(rot).collect()),
         trail: Vec::new(),
+        oral_trail: Vec::new(),
     };
     let a = build(&slice.view(), &sp, 5, 2.0);
     let b = build(&tilted.view(), &sp, 5, 2.0);
@@ -234,6 +235,7 @@ fn degenerate_slices_give_finite_surfaces() {
             tentacles: [&tentacles[0], &tentacles[1]],
             oral_arms: [&[], &[]],
             trail: crate::sim::guides::Trail::NONE,
+            oral_trail: crate::sim::guides::Trail::NONE,
         };
         let mesh =
             JellyMesh::from_slice(&view, &sp, 9, 3.0).unwrap_or_else(|e| panic!("{name}: {e}"));

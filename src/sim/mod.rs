@@ -45,4 +45,7 @@ pub struct SliceView<'a> {
     /// The fringe's offsets in the 3D water the slice does not see (the plugin's guide
     /// chains); [`Trail::NONE`](guides::Trail::NONE) for the slice alone.
     pub trail: guides::Trail<'a>,
+    /// The manubrium's and the oral arms' offsets in the same water, one guide per tube in
+    /// the surface's order (the manubrium first, if the species has one).
+    pub oral_trail: guides::Trail<'a>,
 }

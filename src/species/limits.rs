@@ -117,7 +117,7 @@ pub const LIMITS: &[Limit] = &[
     limit!("tentacle_cross_section", 1e-4, 1.0, "", "a fraction of the margin's wall"),
     limit!("tentacle_radius", 1e-5, 0.05, "m", "with at most a twentieth of the diameter (below)"),
     limit!("tentacle_length_spread", 0.0, 0.9, "", "a fraction of the length; a tentacle drawn shorter than a tenth of it is a stub"),
-    limit!("tentacle_guides", 0.0, 16.0, "", "each guide adds 72 bytes to the packed shape; a current and a turn are the first two harmonics around the margin"),
+    limit!("tentacle_guides", 0.0, 16.0, "", "each guide adds 36 bytes to the packed shape (and, with any, each oral tube 36 more); a current and a turn are the first two harmonics around the margin"),
     limit!("manubrium_length", 0.0, 2.0, "m", "with at most two bell diameters (below)"),
     limit!("manubrium_radius", 1e-5, 0.25, "m", "with at most a quarter of the diameter (below)"),
     limit!("oral_arm_count", 0.0, 32.0, "", "each arm is a blade of the mesh"),
@@ -268,6 +268,9 @@ pub fn tentacle_points(s: &Species, rings: usize) -> usize {
 
 /// Sides of the manubrium's and the oral arms' tubes: eight, so a blade has two edges.
 pub const ORAL_SIDES: usize = 8;
+
+/// The most oral tubes a mesh draws (an unvalidated species may ask for more).
+pub const MAX_DRAWN_ORAL_TUBES: usize = 64;
 
 /// Tubes hanging from the subumbrellar apex: the manubrium (if it has a length) and the
 /// oral arms (if they have one).

@@ -121,8 +121,9 @@ pub struct Species {
     pub tentacle_length_spread: f32,
     /// Guide chains around the margin that carry the fringe in the 3D water the slice does
     /// not see (a current unlike the one carrying the bell, the body's turns); the drawn
-    /// tentacles bend between them. 0: the fringe follows the slice alone. Drawn only:
-    /// the slice's chains drive the swimming. At most one per tentacle is used.
+    /// tentacles bend between them; the manubrium and each oral arm then have a guide of
+    /// their own. 0: the fringe and the oral arms follow the slice alone. Drawn only: the
+    /// slice's chains drive the swimming. At most one per tentacle is used.
     pub tentacle_guides: u32,
 
     // --- Anatomy (drawn; carried by the slice's water, never pushing it) ---

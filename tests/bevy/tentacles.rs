@@ -1,7 +1,8 @@
 //! The fringe in the 3D water, through the real plugin: guide chains trail downstream of a
 //! jellyfish the water flows past and lie still where it is carried, lag a turn and are
 //! towed back into line, never enter the bell, replay bit for bit however time is split
-//! into frames, and trail at every level of detail.
+//! into frames, and trail at every level of detail. The oral arms' guides trail too, and
+//! never pass through the bell's wall.
 
 use crate::common::app::Headless;
 use bevy::prelude::*;
@@ -107,6 +108,34 @@ fn a_cross_current_trails_the_fringe_downstream_at_the_drag_balance() {
         100.0 * drift / length
     );
     assert!(drift <= 0.05 * length, "a carried fringe moved {drift} m");
+    // The oral arms hang from the mouth inside the bell; the stream reaches them through
+    // the aperture, and each is swept downstream, bent back as the slice bends its own
+    // arms (over 0.6 s: at most 7 mm in this 12 mm/s stream).
+    let g = guides(&app, held);
+    assert_eq!(g.oral_guides(), 5, "the manubrium and four arms");
+    let rotation = app.world().get::<Transform>(held).unwrap().rotation;
+    let downstream = current.normalize();
+    let arm = species().oral_arm_length;
+    for t in 1..g.oral_guides() {
+        let drawn: Vec<Vec3> = g.oral_drawn(t).collect();
+        let reference = &g.oral_reference()[t * GUIDE_NODES..(t + 1) * GUIDE_NODES];
+        let swept = rotation * (drawn[GUIDE_NODES - 1] - reference[GUIDE_NODES - 1]);
+        let along = swept.dot(downstream) / arm;
+        println!(
+            "arm {t}: tip swept {:.0}% of its length downstream",
+            100.0 * along
+        );
+        assert!(
+            along > 0.1,
+            "arm {t} swept only {:.0}% downstream",
+            100.0 * along
+        );
+        let across = (swept - swept.dot(downstream) * downstream).length() / arm;
+        assert!(
+            across < along,
+            "arm {t} swept more across the stream than along it"
+        );
+    }
 }
 
 #[test]
@@ -176,6 +205,7 @@ fn no_guide_node_enters_the_bell_in_a_thousand_strokes() {
     let e = spawn(&mut app, &s, Vec3::ZERO, ());
     let frames = (1000.0 * s.period() / 0.125) as usize;
     let (mut checked, mut moved) = (0, 0.0f32);
+    let (mut oral_checked, mut oral_moved) = (0, 0.0f32);
     for _ in 0..frames {
         run(&mut app, e, 1, Some(Vec3::ZERO));
         let sim = app.world().get::<JellyfishSlice>(e).unwrap().sim().unwrap();
@@ -196,12 +226,70 @@ fn no_guide_node_enters_the_bell_in_a_thousand_strokes() {
             }
         }
         moved = moved.max(g.offsets().iter().map(|d| d.length()).fold(0.0, f32::max));
+        // The oral arms hang in the cavity and below it: they may leave it only through
+        // the aperture, never through the subumbrella into the mesoglea (a segment that
+        // neither leaves nor enters the cavity may cut a fold of the wall, as the straight
+        // chord of a curved tube does).
+        for t in 0..g.oral_guides() {
+            let meridian = |p: Vec3| Vec2::new(Vec2::new(p.x, p.z).length(), p.y);
+            let drawn: Vec<Vec3> = g.oral_drawn(t).collect();
+            let reference = &g.oral_reference()[t * GUIDE_NODES..(t + 1) * GUIDE_NODES];
+            for m in 1..GUIDE_NODES {
+                let (a, b) = (meridian(drawn[m - 1]), meridian(drawn[m]));
+                let (ra, rb) = (reference[m - 1], reference[m]);
+                // The slice's own oral chains are carried by its water alone and may
+                // pass through the bell: the guides do not second-guess them.
+                let cavity = |p: Vec2| inside(&outline, p);
+                let from_cavity = |a: Vec2, b: Vec2| cavity(a) != cavity(b);
+                let (ra, rb) = (meridian(ra), meridian(rb));
+                if !from_cavity(a, b) || (from_cavity(ra, rb) && crosses(&outline, ra, rb)) {
+                    continue;
+                }
+                let w = [a, b];
+                assert!(
+                    !crosses(&outline, w[0], w[1]),
+                    "oral tube {t} segment {m} crosses the subumbrella: {} to {} (stroke {})",
+                    w[0],
+                    w[1],
+                    sim.cycle()
+                );
+                oral_checked += 1;
+            }
+            let tip = g.oral_drawn(t).last().unwrap();
+            let reference = g.oral_reference()[(t + 1) * GUIDE_NODES - 1];
+            oral_moved = oral_moved.max(tip.distance(reference));
+        }
     }
     println!("{checked} nodes checked over {frames} frames; offsets up to {moved:.4} m");
+    println!("{oral_checked} oral segments checked; oral tips moved up to {oral_moved:.4} m");
     assert!(
         moved > 0.3 * s.tentacle_length,
         "the water never moved the fringe"
     );
+    assert!(
+        oral_moved > 0.3 * s.oral_arm_length,
+        "the water never moved the oral arms"
+    );
+}
+
+/// Whether the segment `a`–`b` (in the meridian: distance from the axis, height) crosses
+/// the open outline (the subumbrella from margin to margin, over the apex) at either
+/// side of the axis, past its own start (the manubrium's root is on it).
+fn crosses(outline: &[Vec2], a: Vec2, b: Vec2) -> bool {
+    let cross = |u: Vec2, v: Vec2| u.x * v.y - u.y * v.x;
+    let mirrored = [a, b].map(|p| Vec2::new(-p.x, p.y));
+    [[a, b], mirrored].into_iter().any(|[a, b]| {
+        outline.windows(2).any(|w| {
+            let (p, q) = (w[0], w[1]);
+            let d = cross(b - a, q - p);
+            if d.abs() < 1e-18 {
+                return false;
+            }
+            let t = cross(p - a, q - p) / d;
+            let u = cross(p - a, b - a) / d;
+            t > 1e-3 && t <= 1.0 && (0.0..=1.0).contains(&u)
+        })
+    })
 }
 
 /// Even–odd rule on the closed outline.
@@ -217,7 +305,8 @@ fn inside(outline: &[Vec2], p: Vec2) -> bool {
     odd
 }
 
-/// Guide offsets and transform after two seconds of frames of `frame` seconds.
+/// Guide offsets (the fringe's, then the oral tubes') and transform after two seconds of
+/// frames of `frame` seconds.
 fn split_run(frame: f64) -> (Vec<Vec3>, Transform) {
     let mut app = app();
     app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
@@ -227,10 +316,14 @@ fn split_run(frame: f64) -> (Vec<Vec3>, Transform) {
     let e = spawn(&mut app, &species(), Vec3::ZERO, ());
     app.update(); // the clock's first update has no delta
     run(&mut app, e, (2.0 / frame).round() as usize, None);
-    (
-        guides(&app, e).offsets().to_vec(),
-        *app.world().get::<Transform>(e).unwrap(),
-    )
+    let g = guides(&app, e);
+    let offsets = g
+        .offsets()
+        .iter()
+        .chain(g.oral_offsets())
+        .copied()
+        .collect();
+    (offsets, *app.world().get::<Transform>(e).unwrap())
 }
 
 #[test]
@@ -252,7 +345,7 @@ fn in_still_water_the_fringe_is_drawn_as_the_slice_draws_it() {
     let s = species();
     let mut app = app();
     let e = spawn(&mut app, &s, Vec3::ZERO, ());
-    let mut worst = 0.0f32;
+    let (mut worst, mut worst_oral) = (0.0f32, 0.0f32);
     for _ in 0..(10.0 * s.period() * 60.0) as usize {
         run(&mut app, e, 1, None);
         let g = guides(&app, e);
@@ -261,7 +354,23 @@ fn in_still_water_the_fringe_is_drawn_as_the_slice_draws_it() {
             .chunks_exact(GUIDE_NODES)
             .map(|d| d[GUIDE_NODES - 1]);
         worst = tips.map(|d| d.length()).fold(worst, f32::max);
+        // The oral tubes' tips, as a share of the fringe's length for one figure.
+        for t in 0..g.oral_guides() {
+            let tip = g.oral_drawn(t).last().unwrap();
+            let reference = g.oral_reference()[(t + 1) * GUIDE_NODES - 1];
+            let share_of_arm = tip.distance(reference) / s.oral_arm_length;
+            worst_oral = worst_oral.max(share_of_arm);
+        }
     }
+    println!(
+        "still water: oral tips at most {:.2}% of an arm off",
+        100.0 * worst_oral
+    );
+    assert!(
+        worst_oral <= 0.05,
+        "an oral tip {:.1}% of an arm off",
+        100.0 * worst_oral
+    );
     // What moves them at all: the slice's own drawing puts a node a hair inside the bell
     // at some angles between its two chains, and the guides keep theirs out.
     let share = worst / s.tentacle_length;
@@ -300,5 +409,26 @@ fn far_jellyfish_trail_their_fringe_in_a_shear() {
     assert!(
         drawn < reference - 0.3,
         "the fringe not swept downstream: x {drawn:.2} against the slice's {reference:.2}"
+    );
+    // The oral arms too (their water is read where they hang, below the bell's centre;
+    // tube 0 is the short, stiff manubrium).
+    let g = guides(&app, e);
+    let rotation = app.world().get::<Transform>(e).unwrap().rotation;
+    let mut sweep = 0.0;
+    for t in 1..g.oral_guides() {
+        let tip = g.oral_drawn(t).last().unwrap();
+        let reference = g.oral_reference()[(t + 1) * GUIDE_NODES - 1];
+        let swept = (rotation * (tip - reference)).x / species().oral_arm_length;
+        println!(
+            "arm {t}: tip swept {:.0}% of its length along x",
+            100.0 * swept
+        );
+        // An arm swept against the inside of the bell stays there.
+        assert!(swept < 0.01, "arm {t} pushed upstream: {swept:.2}");
+        sweep += swept / (g.oral_guides() - 1) as f32;
+    }
+    assert!(
+        sweep < -0.03,
+        "the arms not swept downstream: {sweep:.2} on average"
     );
 }

@@ -16,6 +16,8 @@ pub(crate) struct Snapshot {
     pub oral_arms: [Vec<Vec2>; 2],
     /// The fringe's guide offsets after the step (`TentacleGuides`), body frame.
     pub trail: Vec<Vec3>,
+    /// The oral tubes' guide offsets after the step, body frame.
+    pub oral_trail: Vec<Vec3>,
     pub centroid: Vec2,
     pub swim: f32,
     /// Slice time of the state, s.
@@ -56,13 +58,16 @@ impl Snapshot {
             }
         };
         lerp(&mut self.bell, &a.bell, &b.bell);
-        self.trail.clear();
-        if a.trail.len() == b.trail.len() {
-            let trail = a.trail.iter().zip(&b.trail).map(|(a, b)| a.lerp(*b, t));
-            self.trail.extend(trail);
-        } else {
-            self.trail.extend_from_slice(&b.trail);
-        }
+        let lerp3 = |out: &mut Vec<Vec3>, a: &[Vec3], b: &[Vec3]| {
+            out.clear();
+            if a.len() == b.len() {
+                out.extend(a.iter().zip(b).map(|(a, b)| a.lerp(*b, t)));
+            } else {
+                out.extend_from_slice(b);
+            }
+        };
+        lerp3(&mut self.trail, &a.trail, &b.trail);
+        lerp3(&mut self.oral_trail, &a.oral_trail, &b.oral_trail);
         for side in 0..2 {
             lerp(
                 &mut self.tentacles[side],
@@ -98,10 +103,12 @@ impl Snapshot {
         self.time = time;
     }
 
-    /// The fringe's guide offsets after the step.
-    pub fn set_trail(&mut self, offsets: &[Vec3]) {
+    /// The fringe's and the oral tubes' guide offsets after the step.
+    pub fn set_trail(&mut self, fringe: &[Vec3], oral: &[Vec3]) {
         self.trail.clear();
-        self.trail.extend_from_slice(offsets);
+        self.trail.extend_from_slice(fringe);
+        self.oral_trail.clear();
+        self.oral_trail.extend_from_slice(oral);
     }
 
     /// `self += weight · other`, point by point, where the shapes match.
@@ -126,6 +133,9 @@ impl Snapshot {
             oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
             trail: Trail {
                 offsets: &self.trail,
+            },
+            oral_trail: Trail {
+                offsets: &self.oral_trail,
             },
         }
     }

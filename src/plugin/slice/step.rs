@@ -124,16 +124,22 @@ impl Step<'_> {
                 let trail = guides.as_deref_mut().map(|guides| {
                     let view = sim.view();
                     let centroid = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
-                    let shape = (view.bell, view.tentacles, centroid);
+                    let shape = StepShape {
+                        bell: view.bell,
+                        tentacles: view.tentacles,
+                        oral_arms: view.oral_arms,
+                        centroid,
+                    };
                     guides.step(
                         &self.guide_frame(&stroke, surge, before, motion, shape),
                         None,
                     );
-                    guides.offsets()
+                    (guides.offsets(), guides.oral_offsets())
                 });
                 history.record(clock, frame, motion.pose, |s| {
                     s.capture(sim);
-                    s.set_trail(trail.unwrap_or_default());
+                    let (fringe, oral) = trail.unwrap_or_default();
+                    s.set_trail(fringe, oral);
                 });
                 if stroke_begins(clock, stroke.resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
@@ -158,11 +164,12 @@ impl Step<'_> {
                 self.travel.step(&stroke, motion);
                 stepped += stroke.step;
                 let trail = guides.as_deref_mut().map(|guides| {
-                    let shape = (
-                        &cycle.bell[..],
-                        [&cycle.tentacles[0][..], &cycle.tentacles[1][..]],
-                        Vec2::ZERO,
-                    );
+                    let shape = StepShape {
+                        bell: &cycle.bell,
+                        tentacles: [&cycle.tentacles[0], &cycle.tentacles[1]],
+                        oral_arms: [&cycle.oral_arms[0], &cycle.oral_arms[1]],
+                        centroid: Vec2::ZERO,
+                    };
                     // Towed at the recorded stroke's mean speed (nothing while resting).
                     let mean = if resting {
                         0.0
@@ -173,12 +180,13 @@ impl Step<'_> {
                         &self.guide_frame(&stroke, surge, before, motion, shape),
                         Some(mean),
                     );
-                    guides.offsets()
+                    (guides.offsets(), guides.oral_offsets())
                 });
                 let (time, swim) = (clock.time(), replay.swim as f32);
                 history.record(clock, frame, motion.pose, |s| {
                     s.copy_frame(cycle, time, swim);
-                    s.set_trail(trail.unwrap_or_default());
+                    let (fringe, oral) = trail.unwrap_or_default();
+                    s.set_trail(fringe, oral);
                 });
                 if stroke_begins(clock, resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
@@ -190,21 +198,26 @@ impl Step<'_> {
         }
     }
 
-    /// What the guides need of the step just taken: `shape` is the bell, the two tentacle
-    /// chains and the bell's centroid after it.
+    /// What the guides need of the step just taken, whose `shape` is given.
     fn guide_frame<'a>(
         &'a self,
         stroke: &Stroke<'a>,
         surge: f32,
         before: Pose,
         motion: &SwimMotion,
-        shape: (&'a [Vec2], [&'a [Vec2]; 2], Vec2),
+        shape: StepShape<'a>,
     ) -> GuideFrame<'a> {
-        let (bell, tentacles, centroid) = shape;
+        let StepShape {
+            bell,
+            tentacles,
+            oral_arms,
+            centroid,
+        } = shape;
         GuideFrame {
             species: stroke.species,
             bell,
             tentacles,
+            oral_arms,
             centroid,
             dt: stroke.step,
             surge,
@@ -215,6 +228,15 @@ impl Step<'_> {
             time: self.travel.now - stroke.behind,
         }
     }
+}
+
+/// The slice's shape after a step, as the guides read it.
+struct StepShape<'a> {
+    bell: &'a [Vec2],
+    tentacles: [&'a [Vec2]; 2],
+    oral_arms: [&'a [Vec2]; 2],
+    /// The bell's centroid, in the same frame as the points.
+    centroid: Vec2,
 }
 
 /// Whether the step just taken ended a cycle: the next one contracts.

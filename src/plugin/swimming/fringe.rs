@@ -1,5 +1,7 @@
 //! The fringe in the 3D water: each jellyfish's guide chains (`sim::guides`), stepped after
-//! each of its slice's steps with the pose that step's travel gave it.
+//! each of its slice's steps with the pose that step's travel gave it. The manubrium and
+//! each oral arm have a guide of their own, hanging within the bell: the manubrium from
+//! the subumbrellar apex, the arms from its mouth.
 //!
 //! What the guides feel is what the slice cannot: the water's velocity at each node
 //! (`AmbientWater`, the tank's included) less the current that carries the bell, the
@@ -9,8 +11,10 @@
 
 use super::Pose;
 use crate::plugin::water::AmbientWater;
-use crate::shape::tentacles::guide_reference;
-use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid};
+use crate::shape::oral::{self, OralStyle};
+use crate::shape::tentacles::{TentacleLayout, guide_reference};
+use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid};
+use crate::sim::oral_arms::{ARM_RELAXATION as ARM_BACK, MANUBRIUM_RELAXATION as STALK_BACK};
 use crate::species::Species;
 use bevy::prelude::*;
 
@@ -25,6 +29,8 @@ pub struct TentacleGuides {
     /// The water halfway down each guide (the steady trailing's).
     halfway: Vec<Vec3>,
     solid: Solid,
+    /// The manubrium's guide (none, or one) and the oral arms'.
+    oral: OralGuides,
     /// Tentacle length the guides were made for, m.
     length: f32,
     /// Steps since a far jellyfish's trailing was last worked out.
@@ -34,12 +40,31 @@ pub struct TentacleGuides {
 /// A far jellyfish works out its steady trailing every this many steps.
 const FAR_REFRESH: u32 = 4;
 
+/// The oral tubes' guides: the manubrium's (stiff, from the apex) and the arms' (limp,
+/// from where the slice puts the mouth: the manubrium's own sway, under its radius, is
+/// not passed on to them), with the reference the slice draws them at.
+#[derive(Clone, Debug, Default)]
+struct OralGuides {
+    stalk: GuideChains,
+    arms: GuideChains,
+    /// Every tube's reference, in the surface's order (the manubrium first).
+    reference: Vec<Vec3>,
+    water: Vec<Vec3>,
+    /// Every tube's offsets, in the surface's order.
+    offsets: Vec<Vec3>,
+    /// The species' oral tubes these were made for, and their length, m.
+    tubes: usize,
+    length: f32,
+}
+
 /// One slice step as the guides see it.
 pub(crate) struct GuideFrame<'a> {
     pub species: &'a Species,
     /// The bell's subumbrella and the two tentacle chains after the step, slice frame.
     pub bell: &'a [Vec2],
     pub tentacles: [&'a [Vec2]; 2],
+    /// The two oral chains after the step, slice frame (empty without oral tubes).
+    pub oral_arms: [&'a [Vec2]; 2],
     /// The bell's centroid in the same frame (the body frame's origin).
     pub centroid: Vec2,
     /// The step, s.
@@ -73,6 +98,31 @@ impl TentacleGuides {
         self.chains.offsets()
     }
 
+    /// How far the water has moved each oral tube's guide node from where the slice draws
+    /// it, tube by tube in the surface's order (the manubrium first). Empty when the
+    /// species has no oral guides.
+    pub fn oral_offsets(&self) -> &[Vec3] {
+        &self.oral.offsets
+    }
+
+    /// Where the slice draws each oral tube's guide, as [`Self::reference`].
+    pub fn oral_reference(&self) -> &[Vec3] {
+        &self.oral.reference
+    }
+
+    /// Oral guides: the manubrium (if the species has one and guides) and the arms.
+    pub fn oral_guides(&self) -> usize {
+        self.oral.tubes
+    }
+
+    /// Oral tube `t`'s guide nodes as drawn, root first, local frame.
+    pub fn oral_drawn(&self, t: usize) -> impl Iterator<Item = Vec3> + '_ {
+        let range = t * GUIDE_NODES..(t + 1) * GUIDE_NODES;
+        let reference = self.oral.reference.get(range.clone()).unwrap_or_default();
+        let offsets = self.oral.offsets.get(range).unwrap_or_default();
+        reference.iter().zip(offsets).map(|(q, d)| *q + *d)
+    }
+
     /// Guide `g`'s nodes as drawn, root first, local frame.
     pub fn drawn(&self, g: usize) -> impl Iterator<Item = Vec3> + '_ {
         let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
@@ -90,16 +140,19 @@ impl TentacleGuides {
             self.chains = GuideChains::new(guides);
             self.length = f.species.tentacle_length;
         }
-        if guides == 0 {
+        self.oral.fit(f.species);
+        if guides == 0 && self.oral.tubes == 0 {
             self.reference.clear();
             return;
         }
-        // The body turned in the step; the water holds the nodes where they were.
-        let turn = f.before.rotation.inverse() * f.after.rotation;
-        self.chains.turn_frame(turn.normalize());
         let towing = (f.surge / f.dt).max(0.0);
         match steady {
             None => {
+                // The body turned in the step; the water holds the nodes where they were.
+                let turn = (f.before.rotation.inverse() * f.after.rotation).normalize();
+                self.chains.turn_frame(turn);
+                self.oral.stalk.turn_frame(turn);
+                self.oral.arms.turn_frame(turn);
                 self.refresh_shape(f);
                 self.read_water(f, |_| true);
                 self.chains.step(&GuideStep {
@@ -110,6 +163,7 @@ impl TentacleGuides {
                     filament: Filament::of(f.species, towing),
                     solid: &self.solid,
                 });
+                self.oral.step(f, towing, &self.solid);
             }
             Some(mean) => self.trail_steadily(f, mean),
         }
@@ -117,8 +171,8 @@ impl TentacleGuides {
 
     /// A far jellyfish's steady trailing in the water halfway down each guide, towed at
     /// `mean` m/s: worked out every [`FAR_REFRESH`] steps (the current changes slowly; the
-    /// offsets ride on the replayed shape between), and not at all where the water there
-    /// would move a tip by less than a hundredth of a tentacle.
+    /// offsets ride on the replayed shape between, turning with the body), and not at all
+    /// where the water there would move a tip by less than a hundredth of a tentacle.
     fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
         self.since_refresh += 1;
         if self.since_refresh < FAR_REFRESH && !self.reference.is_empty() {
@@ -135,9 +189,15 @@ impl TentacleGuides {
         };
         let negligible = 0.01 * mean.max(1e-4);
         let carrying = carrying(f);
-        let calm = (0..guides).all(|g| relative_water(f, carrying, probe(g)).length() < negligible);
+        // The oral tubes hang about the axis, half their length down.
+        let oral = (self.oral.tubes > 0).then(|| Vec3::new(0.0, -0.5 * self.oral.length, 0.0));
+        let calm = (0..guides)
+            .map(probe)
+            .chain(oral)
+            .all(|p| relative_water(f, carrying, p).length() < negligible);
         if calm {
             self.chains.reset();
+            self.oral.reset();
             if self.reference.is_empty() {
                 self.refresh_shape(f);
             }
@@ -150,6 +210,7 @@ impl TentacleGuides {
         self.halfway.extend(halfway);
         self.chains
             .steady(&self.reference, &self.halfway, mean, &self.solid);
+        self.oral.steady(f, mean, &self.solid);
     }
 
     /// Where the slice draws the guides now, and the bell as a solid.
@@ -158,6 +219,7 @@ impl TentacleGuides {
         let guides = self.chains.guides();
         guide_reference(f.tentacles, roots, f.centroid, guides, &mut self.reference);
         self.solid.rebuild(f.bell, f.centroid, f.species);
+        self.oral.refresh_shape(f);
     }
 
     /// The water at the nodes `wanted` picks (by index along the guide) relative to the
@@ -185,6 +247,137 @@ impl TentacleGuides {
             inverse * (world - after.position) / scale
         };
         self.chains.move_frame(to_body, self.length, &self.solid);
+        let reach = self.oral.length;
+        self.oral.stalk.move_frame(to_body, reach, &self.solid);
+        self.oral.arms.move_frame(to_body, reach, &self.solid);
+        self.oral.gather();
+    }
+}
+
+impl OralGuides {
+    /// Guides for the species' oral tubes (made afresh when their number or length
+    /// changed).
+    fn fit(&mut self, species: &Species) {
+        let tubes = species.oral_guide_count();
+        let length = species.manubrium_length + species.oral_arm_length;
+        if tubes == self.tubes && length == self.length {
+            return;
+        }
+        let stalk = (tubes > 0 && species.manubrium_length > 0.0) as usize;
+        *self = Self {
+            stalk: GuideChains::hanging(
+                stalk,
+                Hanging::Within {
+                    relaxation: STALK_BACK,
+                },
+            ),
+            arms: GuideChains::hanging(
+                tubes - stalk,
+                Hanging::Within {
+                    relaxation: ARM_BACK,
+                },
+            ),
+            offsets: vec![Vec3::ZERO; tubes * GUIDE_NODES],
+            tubes,
+            length,
+            ..default()
+        };
+    }
+
+    /// Nodes of the manubrium's guide (none without one).
+    fn stalk_nodes(&self) -> usize {
+        self.stalk.guides() * GUIDE_NODES
+    }
+
+    /// Where the slice draws every tube's guide now.
+    fn refresh_shape(&mut self, f: &GuideFrame) {
+        if self.tubes == 0 {
+            self.reference.clear();
+            return;
+        }
+        let layout = TentacleLayout {
+            count: self.tubes,
+            sides: oral::ORAL_SIDES,
+            points: 2,
+        };
+        let apex = f.bell[f.bell.len() / 2];
+        let style = OralStyle::of(f.species);
+        let (chains, reference) = (f.oral_arms, &mut self.reference);
+        oral::guide_reference(&layout, &style, chains, apex, f.centroid, reference);
+    }
+
+    /// One live step of the manubrium and the arms.
+    fn step(&mut self, f: &GuideFrame, towing: f32, solid: &Solid) {
+        if self.tubes == 0 || self.reference.len() != self.offsets.len() {
+            return;
+        }
+        let k = self.stalk_nodes();
+        let carrying = carrying(f);
+        self.water.clear();
+        let nodes = self
+            .reference
+            .iter()
+            .zip(&self.offsets)
+            .map(|(q, d)| *q + *d);
+        self.water
+            .extend(nodes.map(|p| relative_water(f, carrying, p)));
+        let (dt, species) = (f.dt, f.species);
+        self.stalk.step(&GuideStep {
+            dt,
+            reference: &self.reference[..k],
+            water: &self.water[..k],
+            towing,
+            filament: Filament::manubrium(species, towing),
+            solid,
+        });
+        self.arms.step(&GuideStep {
+            dt,
+            reference: &self.reference[k..],
+            water: &self.water[k..],
+            towing,
+            filament: Filament::oral_arm(species, towing),
+            solid,
+        });
+        self.gather();
+    }
+
+    /// A far jellyfish's steady trailing in the water halfway down each tube.
+    fn steady(&mut self, f: &GuideFrame, towing: f32, solid: &Solid) {
+        if self.tubes == 0 || self.reference.len() != self.offsets.len() {
+            return;
+        }
+        let k = self.stalk_nodes();
+        let carrying = carrying(f);
+        self.water.clear();
+        let halfway = self
+            .reference
+            .chunks(GUIDE_NODES)
+            .map(|q| q[GUIDE_NODES / 2]);
+        self.water
+            .extend(halfway.map(|p| relative_water(f, carrying, p)));
+        let stalk = self.stalk.guides();
+        self.stalk
+            .steady(&self.reference[..k], &self.water[..stalk], towing, solid);
+        let arms = &self.water[stalk..];
+        self.arms.steady(&self.reference[k..], arms, towing, solid);
+        self.gather();
+    }
+
+    fn reset(&mut self) {
+        self.stalk.reset();
+        self.arms.reset();
+        self.offsets.fill(Vec3::ZERO);
+    }
+
+    /// Every tube's offsets in the surface's order.
+    fn gather(&mut self) {
+        let (stalk, arms) = (self.stalk.offsets(), self.arms.offsets());
+        if stalk.len() + arms.len() != self.offsets.len() {
+            return;
+        }
+        let (head, tail) = self.offsets.split_at_mut(stalk.len());
+        head.copy_from_slice(stalk);
+        tail.copy_from_slice(arms);
     }
 }
 

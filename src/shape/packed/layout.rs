@@ -11,6 +11,9 @@
 use crate::shape::tentacles::SIDEWAYS;
 use crate::shape::variation::APEX_FADE;
 use crate::sim::guides::GUIDE_NODES;
+
+// A guide's halves fill whole values.
+const _: () = assert!((3 * (GUIDE_NODES - 1)).is_multiple_of(2));
 use crate::species::limits::ORAL_SIDES;
 use std::f32::consts::TAU;
 
@@ -123,11 +126,15 @@ layout! {
         H_TENTACLE_SPREAD = 32;
         /// Guide chains of the fringe's trail, stored after the oral discs.
         H_GUIDES = 33;
+        /// Guide chains of the oral tubes (one per tube, or none), stored after the
+        /// fringe's.
+        H_ORAL_GUIDES = 34;
         /// Header length.
-        HEADER = 34;
-        /// Values per guide node of the trail: its offset (x, y, z); a guide stores its
-        /// nodes after the root, which never moves.
-        TRAIL = 3;
+        HEADER = 35;
+        /// Values per guide of the trail: the offsets (x, y, z) of its nodes after the
+        /// root (which never moves), as halves (IEEE binary16: 24 µm at 5 cm), two to a
+        /// value, the first in its low bits.
+        TRAIL = 3 * (GUIDE_NODES - 1) / 2;
         /// Values per disc: centre (x, y), radius, radial (x, y).
         DISC = 5;
         /// Values per pair of mesoglea normals: left (x, y), then right (x, y).

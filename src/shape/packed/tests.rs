@@ -18,9 +18,21 @@ fn packed_block_rebuilds_the_cpu_mesh() {
             slice.trail = (0..species.guide_count() * GUIDE_NODES)
                 .map(|k| {
                     let (g, m) = (k / GUIDE_NODES, (k % GUIDE_NODES) as f32);
-                    Vec3::new(0.002 * m, 0.0001 * m * g as f32, -0.001 * m * m / 6.0)
+                    halves(Vec3::new(
+                        0.002 * m,
+                        0.0001 * m * g as f32,
+                        -0.001 * m * m / 6.0,
+                    ))
                 })
                 .collect();
+            // The oral tubes too, the manubrium's tip carrying the arms' mouth.
+            slice.oral_trail = (0..species.oral_guide_count() * GUIDE_NODES)
+                .map(|k| {
+                    let (t, m) = (k / GUIDE_NODES, (k % GUIDE_NODES) as f32);
+                    halves(Vec3::new(-0.001 * m, 0.0003 * m * t as f32, 0.0005 * m))
+                })
+                .collect();
+            assert!(!slice.oral_trail.is_empty());
             let view = slice.view();
             let mesh = JellyMesh::from_slice(&view, &species, seed, time).unwrap();
             let mut block = Vec::new();
@@ -66,6 +78,61 @@ fn packed_block_rebuilds_the_cpu_mesh() {
             }
         }
     }
+}
+
+/// The oral trail moves each tube's centreline by its own guide: a tip moves by exactly
+/// that much on both paths.
+#[test]
+fn oral_guides_move_their_tubes() {
+    let species = Species::aurelia();
+    let tubes = species.oral_guide_count();
+    assert_eq!(tubes, 5, "the manubrium and four arms");
+    let slice = SliceOutline::contracted(&species, 31, 12, 0.3);
+    let mut moved = slice.clone();
+    let tip = |t: usize| Vec3::new(0.001, -0.002, 0.003 * t as f32);
+    moved.oral_trail = (0..tubes * GUIDE_NODES)
+        .map(|k| {
+            let (t, m) = (k / GUIDE_NODES, k % GUIDE_NODES);
+            halves(tip(t) * m as f32 / (GUIDE_NODES - 1) as f32)
+        })
+        .collect();
+    let res = Resolution::of(&species);
+    let l = res.oral;
+    let first = res.tentacles.vertex_count();
+    let build = |s: &SliceOutline| JellyMesh::from_slice(&s.view(), &species, 7, 1.0).unwrap();
+    let (still, swept) = (build(&slice), build(&moved));
+    let pack = |s: &SliceOutline| {
+        let mut block = Vec::new();
+        let mut packer = ShapePacker::default();
+        packer
+            .pack(&s.view(), &species, res, 7, 1.0, &mut block)
+            .unwrap();
+        block
+    };
+    let swept_block = pack(&moved);
+    for t in 0..tubes {
+        let expected = halves(tip(t));
+        let v = first + l.tip(t);
+        let shift = Vec3::from_array(swept.tentacles.positions[v])
+            - Vec3::from_array(still.tentacles.positions[v]);
+        // The tip cap sits off the centre along the tangent, which the trail tilts a little.
+        let thick = species.oral_arm_width;
+        assert!(
+            shift.distance(expected) < 0.25 * thick,
+            "tube {t}: tip moved {shift} against {expected}"
+        );
+        let gpu = tentacle_vertex(Block(&swept_block), v).0;
+        let cpu = Vec3::from_array(swept.tentacles.positions[v]);
+        assert!(
+            gpu.distance(cpu) < 1e-5,
+            "tube {t}: packed {gpu} against CPU {cpu}"
+        );
+    }
+}
+
+/// `v` as the packed shape carries a trail: each component rounded to a half.
+fn halves(v: Vec3) -> Vec3 {
+    v.to_array().map(|x| half::f16::from_f32(x).to_f32()).into()
 }
 
 fn sarsia_like() -> Species {

@@ -23,7 +23,7 @@ pub(crate) use elements::{Hinge, Muscle, Spring};
 pub use outline::{Outline, contains, outward_normals};
 pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
-pub(crate) use tentacle::filament;
+pub(crate) use tentacle::cylinder_filament;
 
 use crate::species::Species;
 use elements::{Constraint, constraints, wrap_angle};

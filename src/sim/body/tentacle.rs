@@ -29,15 +29,22 @@ pub(super) struct TentacleDrag {
 impl TentacleDrag {
     /// A tentacle of the species, hanging straight, in segments of `segment` metres.
     pub(crate) fn new(species: &Species, segment: f32, depth: Depth) -> Self {
-        let a = species.tentacle_radius.max(1e-6);
-        let length = species.tentacle_length.max(2.0 * a);
         let per_depth = tentacles_per_depth(species, depth);
+        let (radius, length) = (species.tentacle_radius, species.tentacle_length);
+        Self::cylinder(species, radius, length, per_depth * segment)
+    }
+
+    /// A cylinder of `radius` and `length` (m) in the species' water, carrying
+    /// `length_per_point` of it per point.
+    fn cylinder(species: &Species, radius: f32, length: f32, length_per_point: f32) -> Self {
+        let a = radius.max(1e-6);
+        let length = length.max(2.0 * a);
         Self {
             radius: a,
             density: species.density,
             kinematic_viscosity: species.kinematic_viscosity(),
             stokes: 4.0 * std::f32::consts::PI * species.viscosity / ((length / a).ln() + 0.5),
-            length_per_point: per_depth * segment,
+            length_per_point,
         }
     }
 
@@ -58,13 +65,20 @@ impl TentacleDrag {
     }
 }
 
-/// One tentacle of the species as a filament in the water at relative speed `speed` (m/s):
-/// the drag across it by the slice's own law, its mass with the water it carries (a
-/// tentacle is about as dense as sea water; a cylinder carries its own volume of water
-/// sideways) and the bending stiffness of a cylinder of mesoglea.
-pub(crate) fn filament(species: &Species, speed: f32) -> crate::sim::guides::Filament {
-    let a = species.tentacle_radius.max(1e-6);
-    let drag = TentacleDrag::new(species, 1.0, Depth::Planar);
+/// A cylinder of mesoglea `radius` thick and `length` long in the species' water, as a
+/// filament at relative speed `speed` (m/s): the drag across it by the slice's own law
+/// for its tentacles, its mass with the water it carries (it is about as dense as sea
+/// water, and a cylinder carries its own volume of water sideways) and its bending
+/// stiffness `E·π·a⁴/4`. A tentacle is one; the guides also draw the manubrium and the
+/// oral arms with it.
+pub(crate) fn cylinder_filament(
+    species: &Species,
+    radius: f32,
+    length: f32,
+    speed: f32,
+) -> crate::sim::guides::Filament {
+    let a = radius.max(1e-6);
+    let drag = TentacleDrag::cylinder(species, radius, length, 0.0);
     let area = std::f32::consts::PI * a * a;
     crate::sim::guides::Filament {
         mass_per_length: 2.0 * species.density * area,

@@ -25,7 +25,7 @@ mod solid;
 mod trail;
 
 pub use solid::Solid;
-pub use trail::{Trail, between};
+pub use trail::{Trail, along, between};
 
 use crate::species::Species;
 use glam::{Quat, Vec3};
@@ -38,11 +38,29 @@ pub const GUIDE_NODES: usize = 7;
 /// not a drag through the water: the fringe starts again where the slice draws it.
 const TELEPORT_LENGTHS: f32 = 4.0;
 
+/// Where a guide hangs, and so what of the bell its nodes stay out of.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Hanging {
+    /// From the margin, outside the bell: out of the mesoglea and the cavity (the fringe).
+    #[default]
+    Outside,
+    /// From the subumbrellar apex, in the cavity and below it, never through the
+    /// mesoglea (the manubrium and the oral arms). As the slice models these parts, they
+    /// have no inertia of their own and bend back towards where the slice draws them
+    /// over `relaxation` seconds (`sim::oral_arms`: 0.08 s for the manubrium, 0.6 s
+    /// for an arm).
+    Within {
+        /// How long the part takes to bend back, s.
+        relaxation: f32,
+    },
+}
+
 /// The guide chains of one jellyfish: offsets from the reference, body frame (the slice's
 /// 3D frame: metres, y the bell's axis, origin at the bell's centroid).
 #[derive(Clone, Debug, Default)]
 pub struct GuideChains {
     guides: usize,
+    hanging: Hanging,
     /// `guides × GUIDE_NODES` offsets from the reference, m; each guide's root is zero.
     offsets: Vec<Vec3>,
     /// Their rate of change, m/s.
@@ -86,7 +104,35 @@ impl Filament {
     /// slice's own law (slender-body Stokes drag, White's cylinder drag as it speeds up),
     /// its mass with the water it carries and the bending of a cylinder of mesoglea.
     pub fn of(species: &Species, speed: f32) -> Self {
-        crate::sim::body::filament(species, speed)
+        let (radius, length) = (species.tentacle_radius, species.tentacle_length);
+        crate::sim::body::cylinder_filament(species, radius, length, speed)
+    }
+
+    /// The manubrium: a tube of mesoglea of the species' radius, far stiffer than a
+    /// tentacle (bending goes as the radius to the fourth). Carried by the water as the
+    /// slice carries it: no inertia of its own ([`Hanging::Within`]).
+    pub fn manubrium(species: &Species, speed: f32) -> Self {
+        let (radius, length) = (species.manubrium_radius, species.manubrium_length);
+        Self {
+            mass_per_length: 0.0,
+            ..crate::sim::body::cylinder_filament(species, radius, length, speed)
+        }
+    }
+
+    /// An oral arm: a blade `w` wide and about `0.3·w` thick (as the surface draws it),
+    /// dragged broadside as a cylinder of its half-width, bending across its thin side,
+    /// `E·w·t³/12`: limp. Carried by the water as the slice carries it: no inertia of its
+    /// own ([`Hanging::Within`]).
+    pub fn oral_arm(species: &Species, speed: f32) -> Self {
+        let w = species.oral_arm_width.max(1e-6);
+        let blade =
+            crate::sim::body::cylinder_filament(species, 0.5 * w, species.oral_arm_length, speed);
+        let t = 0.3 * w;
+        Self {
+            mass_per_length: 0.0,
+            bending: species.elastic_modulus * w * t * t * t / 12.0,
+            ..blade
+        }
     }
 
     /// The time the tentacle takes to catch up with the water around it, s.
@@ -96,11 +142,17 @@ impl Filament {
 }
 
 impl GuideChains {
-    /// `guides` chains hanging where the slice draws them.
+    /// `guides` chains of the fringe hanging where the slice draws them.
     pub fn new(guides: usize) -> Self {
+        Self::hanging(guides, Hanging::Outside)
+    }
+
+    /// `guides` chains hanging where the slice draws them, `hanging` as they do.
+    pub fn hanging(guides: usize, hanging: Hanging) -> Self {
         let n = guides * GUIDE_NODES;
         Self {
             guides,
+            hanging,
             offsets: vec![Vec3::ZERO; n],
             velocity: vec![Vec3::ZERO; n],
             reference: Vec::new(),
@@ -177,6 +229,7 @@ impl GuideChains {
                 &self.reference[range.clone()],
                 &mut self.offsets[range],
                 solid,
+                self.hanging,
             );
         }
     }
@@ -205,10 +258,14 @@ impl GuideChains {
                 velocity[m] = (tau * velocity[m] + dt * stream) / (tau + dt);
                 offsets[m] += dt * velocity[m];
             }
+            if let Hanging::Within { relaxation } = self.hanging {
+                let keep = relaxation.max(0.0) / (relaxation.max(0.0) + dt);
+                offsets.iter_mut().for_each(|d| *d *= keep);
+            }
             let spacing = length(reference) / (GUIDE_NODES - 1) as f32;
             let rate = s.filament.bending / (s.filament.normal_drag.max(1e-12) * spacing.powi(4));
             straighten(offsets, (rate * dt).min(0.25));
-            inextensible(reference, offsets, s.solid);
+            inextensible(reference, offsets, s.solid, self.hanging);
             for m in 1..GUIDE_NODES {
                 velocity[m] = (offsets[m] - before[m]) / dt;
             }
@@ -233,10 +290,16 @@ impl GuideChains {
             let reference = &reference[range.clone()];
             let step = length(reference) / (GUIDE_NODES - 1) as f32;
             let offsets = &mut self.offsets[range.clone()];
+            // Bent back over a relaxation time, a part hanging within the bell is moved
+            // no further than the water takes it in that time.
+            let most = match self.hanging {
+                Hanging::Within { relaxation } => relaxation.max(0.0),
+                Hanging::Outside => f32::INFINITY,
+            };
             for (m, d) in offsets.iter_mut().enumerate() {
-                *d = *water * (m as f32 * step / towing);
+                *d = *water * (m as f32 * step / towing).min(most);
             }
-            inextensible(reference, offsets, solid);
+            inextensible(reference, offsets, solid, self.hanging);
             self.velocity[range].fill(Vec3::ZERO);
         }
         self.reference.clear();
@@ -275,8 +338,9 @@ fn straighten(offsets: &mut [Vec3], share: f32) {
 /// Keeps each segment of the drawn chain (reference + offset) at its reference's length,
 /// walking from the root, and every node out of the bell ([`Solid::keep_out`]: where the
 /// slice itself draws a node in the wall, only out of the cavity; the guides carry what
-/// the slice cannot see, not a second opinion on what it can).
-fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid) {
+/// the slice cannot see, not a second opinion on what it can), or for guides hanging
+/// within it, from passing through its wall ([`Solid::keep_within`]).
+fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging: Hanging) {
     offsets[0] = Vec3::ZERO;
     let mut previous = reference[0];
     for m in 1..reference.len() {
@@ -285,7 +349,13 @@ fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid) {
         let along = (drawn - previous)
             .try_normalize()
             .unwrap_or_else(|| (reference[m] - reference[m - 1]).normalize_or(Vec3::NEG_Y));
-        let placed = solid.keep_out(previous + along * length, reference[m]);
+        let p = previous + along * length;
+        let placed = match hanging {
+            Hanging::Outside => solid.keep_out(p, reference[m]),
+            Hanging::Within { .. } => {
+                solid.keep_within(previous, p, reference[m - 1], reference[m])
+            }
+        };
         offsets[m] = placed - reference[m];
         previous = placed;
     }

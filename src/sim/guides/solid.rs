@@ -72,11 +72,91 @@ impl Solid {
         if !(self.near(meridian(p)) && inside(outline, meridian(p))) {
             return p;
         }
-        let placed = nearest_outside(outline, meridian(p), self.clearance);
-        let around = Vec2::new(p.x, p.z).normalize_or(Vec2::X);
-        let r = placed.x.abs();
-        Vec3::new(r * around.x, placed.y, r * around.y)
+        on_meridian(p, nearest_outside(outline, meridian(p), self.clearance))
     }
+
+    /// Where a node of a part hanging within the bell (the manubrium, an oral arm) may
+    /// be drawn instead of `p`, the node before it drawn at `previous`: never in the
+    /// mesoglea, and never through the subumbrella out of the cavity or into it, so
+    /// in the cavity, or out of it through the aperture (a segment that does not leave or
+    /// enter the cavity may cut a fold of the wall, as the straight chord of a curved
+    /// tube does). A node that would be is
+    /// put back on its predecessor's side: just inside the cavity, or just outside the
+    /// bell, at the same angle around the axis. Where the
+    /// slice itself draws the segment (`reference`, from `reference_previous`) through
+    /// the subumbrella, it is left: its oral chains are carried by its water alone.
+    pub fn keep_within(
+        &self,
+        previous: Vec3,
+        p: Vec3,
+        reference_previous: Vec3,
+        reference: Vec3,
+    ) -> Vec3 {
+        let (a, b) = (meridian(previous), meridian(p));
+        if !self.near(a) && !self.near(b) {
+            return p;
+        }
+        let (ra, rb) = (meridian(reference_previous), meridian(reference));
+        let through = |a, b| {
+            let leaves = inside(&self.cavity, a) != inside(&self.cavity, b);
+            leaves && self.through_subumbrella(a, b)
+        };
+        let walled = self.in_wall(b) && !self.in_wall(rb);
+        let crossing = through(a, b) && !through(ra, rb);
+        if !(walled || crossing) {
+            return p;
+        }
+        let placed = if inside(&self.cavity, a) {
+            let c = nearest_on(&self.cavity, b);
+            let inward = match inside(&self.cavity, b) {
+                true => b - c,
+                false => c - b,
+            };
+            c + inward.normalize_or_zero() * self.clearance
+        } else if inside(&self.whole, b) {
+            nearest_outside(&self.whole, b, self.clearance)
+        } else {
+            b
+        };
+        on_meridian(p, placed)
+    }
+
+    /// Whether a meridian point lies in the mesoglea: in the bell, not in its cavity.
+    fn in_wall(&self, q: Vec2) -> bool {
+        self.near(q) && inside(&self.whole, q) && !inside(&self.cavity, q)
+    }
+
+    /// Whether the meridian segment `a`–`b` passes through the subumbrella (the cavity's
+    /// outline less the aperture chord), on either side of the axis; a segment that
+    /// starts on it (the manubrium's root at the apex) does not.
+    fn through_subumbrella(&self, a: Vec2, b: Vec2) -> bool {
+        let mirror = |p: Vec2| Vec2::new(-p.x, p.y);
+        [(a, b), (mirror(a), mirror(b))].into_iter().any(|(a, b)| {
+            self.cavity
+                .windows(2)
+                .any(|w| segments_cross(a, b, w[0], w[1]))
+        })
+    }
+}
+
+/// Whether segment `a`–`b` crosses segment `p`–`q` past its own start.
+fn segments_cross(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> bool {
+    let (ab, pq) = (b - a, q - p);
+    let d = ab.perp_dot(pq);
+    if d.abs() < 1e-18 {
+        return false;
+    }
+    let t = (p - a).perp_dot(pq) / d;
+    let u = (p - a).perp_dot(ab) / d;
+    t > 1e-3 && t <= 1.0 && (0.0..=1.0).contains(&u)
+}
+
+/// The body-frame point at the meridian point `placed` (its radius and height), at the
+/// angle around the axis of `p`.
+fn on_meridian(p: Vec3, placed: Vec2) -> Vec3 {
+    let around = Vec2::new(p.x, p.z).normalize_or(Vec2::X);
+    let r = placed.x.abs();
+    Vec3::new(r * around.x, placed.y, r * around.y)
 }
 
 fn inside(outline: &[Vec2], q: Vec2) -> bool {
@@ -85,6 +165,12 @@ fn inside(outline: &[Vec2], q: Vec2) -> bool {
 
 /// The point of the closed `outline` nearest `q`, moved `clearance` further out.
 fn nearest_outside(outline: &[Vec2], q: Vec2, clearance: f32) -> Vec2 {
+    let c = nearest_on(outline, q);
+    c + (c - q).normalize_or_zero() * clearance
+}
+
+/// The point of the closed `outline` nearest `q`.
+fn nearest_on(outline: &[Vec2], q: Vec2) -> Vec2 {
     let n = outline.len();
     let mut best = (f32::MAX, q);
     for k in 0..n {
@@ -97,7 +183,7 @@ fn nearest_outside(outline: &[Vec2], q: Vec2, clearance: f32) -> Vec2 {
             best = (d, c);
         }
     }
-    best.1 + (best.1 - q).normalize_or_zero() * clearance
+    best.1
 }
 
 /// A body-frame point in the meridian: its distance from the axis and its height.

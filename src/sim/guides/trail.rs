@@ -30,6 +30,24 @@ impl Trail<'_> {
             self.offsets[g * GUIDE_NODES + m]
         })
     }
+
+    /// The offset of guide `g`'s own tube (an oral tube is its own guide), `fraction` of
+    /// the way from its root to its tip; zero for a guide it does not have.
+    pub fn along(&self, g: usize, fraction: f32) -> Vec3 {
+        match self.offsets.get(g * GUIDE_NODES..(g + 1) * GUIDE_NODES) {
+            Some(nodes) => along(fraction, |m| nodes[m]),
+            None => Vec3::ZERO,
+        }
+    }
+}
+
+/// Linear between one guide's nodes (`node(m)`) at `fraction` of the way down: what
+/// [`Trail::along`] and the packed shape's CPU mirror both read.
+pub fn along(fraction: f32, node: impl Fn(usize) -> Vec3) -> Vec3 {
+    let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
+    let m = (along as usize).min(GUIDE_NODES - 2);
+    let v = along - m as f32;
+    node(m) + (node(m + 1) - node(m)) * v
 }
 
 /// Bilinear between `guides` guides' nodes (`node(g, m)`) at angle `sigma` and `fraction`
@@ -46,9 +64,6 @@ pub fn between(
     let around = (sigma / TAU).rem_euclid(1.0) * guides as f32;
     let g = (around as usize).min(guides - 1);
     let (w, next) = (around - g as f32, (g + 1) % guides);
-    let along = fraction.clamp(0.0, 1.0) * (GUIDE_NODES - 1) as f32;
-    let m = (along as usize).min(GUIDE_NODES - 2);
-    let v = along - m as f32;
-    let on = |g: usize| node(g, m) + (node(g, m + 1) - node(g, m)) * v;
+    let on = |g: usize| along(fraction, |m| node(g, m));
     on(g) + (on(next) - on(g)) * w
 }

@@ -267,6 +267,7 @@ impl SliceSim {
             tentacles: [&self.tentacle_view[0], &self.tentacle_view[1]],
             oral_arms: [&self.oral_arms.chains[0], &self.oral_arms.chains[1]],
             trail: crate::sim::guides::Trail::NONE,
+            oral_trail: crate::sim::guides::Trail::NONE,
         }
     }
 

@@ -306,8 +306,44 @@ fn trail_node(start: u32, g: u32, m: u32) -> vec3<f32> {
     if m == 0u {
         return vec3(0.0);
     }
-    let at = start + (g * (packed::GUIDE_NODES - 1u) + m - 1u) * packed::TRAIL;
-    return vec3(shapes[at], shapes[at + 1u], shapes[at + 2u]);
+    let h = 3u * (m - 1u);
+    return vec3(trail_half(start, g, h), trail_half(start, g, h + 1u), trail_half(start, g, h + 2u));
+}
+
+// Half `h` of guide g's values: two to a value, the first in its low bits.
+fn trail_half(start: u32, g: u32, h: u32) -> f32 {
+    let pair = bitcast<u32>(shapes[start + g * packed::TRAIL + h / 2u]);
+    return half_to_f32((pair >> (16u * (h & 1u))) & 0xffffu);
+}
+
+// An IEEE binary16 as an f32, exactly (what `half::f16::to_f32` gives), without the
+// float16 capability `unpack2x16float` needs. The trail holds no infinities or NaNs.
+fn half_to_f32(bits: u32) -> f32 {
+    let sign = select(1.0, -1.0, (bits & 0x8000u) != 0u);
+    let exponent = (bits >> 10u) & 0x1fu;
+    let mantissa = bits & 0x3ffu;
+    if exponent == 0u {
+        return sign * f32(mantissa) * 5.9604645e-8;
+    }
+    return bitcast<f32>(((bits & 0x8000u) << 16u) | ((exponent + 112u) << 23u) | (mantissa << 13u));
+}
+
+// packed::Block::trail_start: the trails follow the oral discs, if any.
+fn trail_start(base: u32) -> u32 {
+    var oral = 0u;
+    if count(base, packed::H_ORAL) > 0u {
+        oral = 2u * oral_disc_count(count(base, packed::H_ORAL_POINTS));
+    }
+    return ring_at(base, count(base, packed::H_RINGS) + 1u)
+        + (count(base, packed::H_POINTS) + oral) * packed::DISC;
+}
+
+// sim::guides::along: guide g's offset `fraction` of the way down, linear between nodes.
+fn trail_along(start: u32, g: u32, fraction: f32) -> vec3<f32> {
+    let along = clamp(fraction, 0.0, 1.0) * f32(packed::GUIDE_NODES - 1u);
+    let m = min(u32(along), packed::GUIDE_NODES - 2u);
+    let v = along - f32(m);
+    return trail_node(start, g, m) + (trail_node(start, g, m + 1u) - trail_node(start, g, m)) * v;
 }
 
 fn trail_offset(base: u32, sigma: f32, fraction: f32) -> vec3<f32> {
@@ -315,24 +351,24 @@ fn trail_offset(base: u32, sigma: f32, fraction: f32) -> vec3<f32> {
     if guides == 0u {
         return vec3(0.0);
     }
-    var oral = 0u;
-    if count(base, packed::H_ORAL) > 0u {
-        oral = 2u * oral_disc_count(count(base, packed::H_ORAL_POINTS));
-    }
-    let start = ring_at(base, count(base, packed::H_RINGS) + 1u)
-        + (count(base, packed::H_POINTS) + oral) * packed::DISC;
+    let start = trail_start(base);
     let turns = sigma / packed::TAU;
     let around = (turns - floor(turns)) * f32(guides);
     let g = min(u32(around), guides - 1u);
     let w = around - f32(g);
     let next = (g + 1u) % guides;
-    let along = clamp(fraction, 0.0, 1.0) * f32(packed::GUIDE_NODES - 1u);
-    let m = min(u32(along), packed::GUIDE_NODES - 2u);
-    let v = along - f32(m);
-    let a = trail_node(start, g, m) + (trail_node(start, g, m + 1u) - trail_node(start, g, m)) * v;
-    let b = trail_node(start, next, m)
-        + (trail_node(start, next, m + 1u) - trail_node(start, next, m)) * v;
+    let a = trail_along(start, g, fraction);
+    let b = trail_along(start, next, fraction);
     return a + (b - a) * w;
+}
+
+// packed::oral_trail_offset: tube t's own guide (sim::guides::Trail::along).
+fn oral_trail_offset(base: u32, t: u32, fraction: f32) -> vec3<f32> {
+    if count(base, packed::H_ORAL_GUIDES) == 0u {
+        return vec3(0.0);
+    }
+    let start = trail_start(base) + count(base, packed::H_GUIDES) * packed::TRAIL;
+    return trail_along(start, t, fraction);
 }
 
 // variation::tentacle_reach.
@@ -431,16 +467,17 @@ fn oral_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
     let x = f32(m) / f32(points - 1u) * f32(n - 1u);
     let i = min(u32(x), n - 2u);
     let w = x - f32(i);
+    let trail = oral_trail_offset(base, t, f32(m) / f32(points - 1u));
     if is_manubrium(base, t) {
         let a = read_disc(discs + i * packed::DISC).centre;
         let b = read_disc(discs + (i + 1u) * packed::DISC).centre;
-        return a + (b - a) * w;
+        return a + (b - a) * w + trail;
     }
     let sigma = arm_angle(base, t).y;
     let cs = vec2(cos(sigma), sin(sigma));
     let a = disc_point(read_disc(discs + (n + i) * packed::DISC), cs);
     let b = disc_point(read_disc(discs + (n + i + 1u) * packed::DISC), cs);
-    return a + (b - a) * w;
+    return a + (b - a) * w + trail;
 }
 
 fn oral_vertex(base: u32, index: u32) -> Surface {
