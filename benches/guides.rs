@@ -1,12 +1,14 @@
-//! The fringe's guide chains: one step of a moon jelly's eight guides (where the slice
-//! draws them, the bell as a solid, the filament step), what a near jellyfish pays per
-//! slice step for a fringe that trails in the 3D water. A frame at 60 Hz takes about 0.6
-//! of the moon jelly's steps. Prints the cost per step and per 60 Hz frame.
+//! The fringe's guide chains: one step of a moon jelly's eight guides and the five of its
+//! manubrium and oral arms (where the slice draws them, the bell as a solid, the filament
+//! steps), what a near jellyfish pays per slice step for a fringe and arms that trail in
+//! the 3D water. A frame at 60 Hz takes about 0.6 of the moon jelly's steps. Prints the
+//! cost per step and per 60 Hz frame.
 
 use bevy_jellyfish::Species;
 use bevy_jellyfish::shape::SliceOutline;
-use bevy_jellyfish::shape::tentacles::guide_reference;
-use bevy_jellyfish::sim::guides::{Filament, GuideChains, GuideStep, Solid};
+use bevy_jellyfish::shape::oral::{self, OralStyle};
+use bevy_jellyfish::shape::tentacles::{TentacleLayout, guide_reference};
+use bevy_jellyfish::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid};
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
 use std::hint::black_box;
@@ -23,16 +25,24 @@ fn step(c: &mut Criterion) {
     let (mut chains, mut reference, mut solid) =
         (GuideChains::new(guides), Vec::new(), Solid::default());
     let mut water = Vec::new();
+    // The manubrium's guide and the arms', from the apex.
+    let tubes = species.oral_guide_count();
+    let layout = TentacleLayout {
+        count: tubes,
+        sides: oral::ORAL_SIDES,
+        points: 2,
+    };
+    let (style, apex) = (OralStyle::of(&species), view.bell[view.bell.len() / 2]);
+    let mut stalk = GuideChains::hanging(1, Hanging::MANUBRIUM);
+    let mut arms = GuideChains::hanging(tubes - 1, Hanging::ORAL_ARM);
+    let (mut oral_reference, mut oral_water) = (Vec::new(), Vec::new());
     let dt = species.step_length();
+    let stream = |t: f32, p: &Vec3| Vec3::new(0.01 * (t + p.y * 40.0).sin(), 0.0, 0.004);
     let mut one_step = |t: f32| {
         guide_reference(view.tentacles, roots, centroid, guides, &mut reference);
         solid.rebuild(view.bell, centroid, &species);
         water.clear();
-        water.extend(
-            reference
-                .iter()
-                .map(|p| Vec3::new(0.01 * (t + p.y * 40.0).sin(), 0.0, 0.004)),
-        );
+        water.extend(reference.iter().map(|p| stream(t, p)));
         chains.step(&GuideStep {
             dt,
             reference: &reference,
@@ -41,6 +51,28 @@ fn step(c: &mut Criterion) {
             filament: Filament::of(&species, 0.01),
             solid: &solid,
         });
+        let oral = (view.oral_arms, apex, centroid);
+        oral::guide_reference(&layout, &style, oral.0, oral.1, oral.2, &mut oral_reference);
+        oral_water.clear();
+        oral_water.extend(oral_reference.iter().map(|p| stream(t, p)));
+        let (k, chain) = (GUIDE_NODES, &oral_reference);
+        for (guides, range, filament) in [
+            (&mut stalk, 0..k, Filament::manubrium(&species, 0.01)),
+            (
+                &mut arms,
+                k..chain.len(),
+                Filament::oral_arm(&species, 0.01),
+            ),
+        ] {
+            guides.step(&GuideStep {
+                dt,
+                reference: &chain[range.clone()],
+                water: &oral_water[range],
+                towing: 0.01,
+                filament,
+                solid: &solid,
+            });
+        }
     };
     let mut t = 0.0;
     c.bench_function("guides/aurelia_step", |b| {
@@ -58,11 +90,12 @@ fn step(c: &mut Criterion) {
     let per_step = start.elapsed().as_secs_f64() / runs as f64;
     let per_frame = per_step * (1.0 / 60.0) / dt as f64;
     println!(
-        "guides: {guides} guides, {:.2} µs a step, {:.2} µs a 60 Hz frame per near jellyfish",
+        "guides: {guides} guides and {tubes} oral ones, {:.2} µs a step, {:.2} µs a 60 Hz frame \
+         per near jellyfish",
         per_step * 1e6,
         per_frame * 1e6
     );
-    black_box(chains.offsets());
+    black_box((chains.offsets(), stalk.offsets(), arms.offsets()));
 }
 
 criterion_group!(benches, step);

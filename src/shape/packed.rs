@@ -175,19 +175,36 @@ impl ShapePacker {
         ] {
             let matching = trail.guides() == guides;
             for g in 0..guides {
-                let nodes = &trail.offsets[(g * GUIDE_NODES + 1).min(trail.offsets.len())..];
-                let mut halves = (0..3 * (GUIDE_NODES - 1)).map(|h| match matching {
-                    true => half::f16::from_f32(nodes[h / 3][h % 3]).to_bits() as u32,
-                    false => 0,
-                });
-                while let (Some(low), Some(high)) = (halves.next(), halves.next()) {
-                    out.push(f32::from_bits(low | high << 16));
-                }
+                let nodes = match matching {
+                    true => &trail.offsets[g * GUIDE_NODES + 1..(g + 1) * GUIDE_NODES],
+                    false => &[][..],
+                };
+                write_halves(nodes, out);
             }
         }
         debug_assert_eq!(out.len() - start, block_len(&res));
         Ok(())
     }
+}
+
+/// Appends one guide's node offsets (none: zeros) as [`TRAIL`] values of two halves each.
+fn write_halves(nodes: &[Vec3], out: &mut Vec<f32>) {
+    use half::slice::HalfFloatSliceExt;
+    const HALVES: usize = 2 * TRAIL;
+    let mut values = [0.0f32; HALVES];
+    let components = nodes.iter().flat_map(|d| d.to_array());
+    for (value, x) in values.iter_mut().zip(components) {
+        *value = x;
+    }
+    if values.iter().all(|x| *x == 0.0) {
+        out.extend_from_slice(&[0.0; TRAIL]);
+        return;
+    }
+    let mut halves = [half::f16::ZERO; HALVES];
+    halves.convert_from_f32_slice(&values);
+    let pair =
+        |h: &[half::f16]| f32::from_bits(h[0].to_bits() as u32 | (h[1].to_bits() as u32) << 16);
+    out.extend(halves.chunks_exact(2).map(pair));
 }
 
 fn write_disc(out: &mut [f32], d: &Disc) {

@@ -410,25 +410,9 @@ fn far_jellyfish_trail_their_fringe_in_a_shear() {
         drawn < reference - 0.3,
         "the fringe not swept downstream: x {drawn:.2} against the slice's {reference:.2}"
     );
-    // The oral arms too (their water is read where they hang, below the bell's centre;
-    // tube 0 is the short, stiff manubrium).
+    // Its oral arms, a few pixels mostly within its bell, hang as its replayed cycle
+    // draws them.
     let g = guides(&app, e);
-    let rotation = app.world().get::<Transform>(e).unwrap().rotation;
-    let mut sweep = 0.0;
-    for t in 1..g.oral_guides() {
-        let tip = g.oral_drawn(t).last().unwrap();
-        let reference = g.oral_reference()[(t + 1) * GUIDE_NODES - 1];
-        let swept = (rotation * (tip - reference)).x / species().oral_arm_length;
-        println!(
-            "arm {t}: tip swept {:.0}% of its length along x",
-            100.0 * swept
-        );
-        // An arm swept against the inside of the bell stays there.
-        assert!(swept < 0.01, "arm {t} pushed upstream: {swept:.2}");
-        sweep += swept / (g.oral_guides() - 1) as f32;
-    }
-    assert!(
-        sweep < -0.03,
-        "the arms not swept downstream: {sweep:.2} on average"
-    );
+    assert_eq!(g.oral_guides(), 5);
+    assert!(g.oral_offsets().iter().all(|d| *d == Vec3::ZERO));
 }

@@ -14,7 +14,6 @@ use crate::plugin::water::AmbientWater;
 use crate::shape::oral::{self, OralStyle};
 use crate::shape::tentacles::{TentacleLayout, guide_reference};
 use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid};
-use crate::sim::oral_arms::{ARM_RELAXATION as ARM_BACK, MANUBRIUM_RELAXATION as STALK_BACK};
 use crate::species::Species;
 use bevy::prelude::*;
 
@@ -154,6 +153,7 @@ impl TentacleGuides {
                 self.oral.stalk.turn_frame(turn);
                 self.oral.arms.turn_frame(turn);
                 self.refresh_shape(f);
+                self.oral.refresh_shape(f);
                 self.read_water(f, |_| true);
                 self.chains.step(&GuideStep {
                     dt: f.dt,
@@ -174,6 +174,9 @@ impl TentacleGuides {
     /// offsets ride on the replayed shape between, turning with the body), and not at all
     /// where the water there would move a tip by less than a hundredth of a tentacle.
     fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
+        // A far jellyfish's oral arms, a few pixels mostly within its bell, hang as the
+        // replayed cycle draws them.
+        self.oral.rest();
         self.since_refresh += 1;
         if self.since_refresh < FAR_REFRESH && !self.reference.is_empty() {
             return;
@@ -189,15 +192,11 @@ impl TentacleGuides {
         };
         let negligible = 0.01 * mean.max(1e-4);
         let carrying = carrying(f);
-        // The oral tubes hang about the axis, half their length down.
-        let oral = (self.oral.tubes > 0).then(|| Vec3::new(0.0, -0.5 * self.oral.length, 0.0));
         let calm = (0..guides)
             .map(probe)
-            .chain(oral)
             .all(|p| relative_water(f, carrying, p).length() < negligible);
         if calm {
             self.chains.reset();
-            self.oral.reset();
             if self.reference.is_empty() {
                 self.refresh_shape(f);
             }
@@ -210,7 +209,6 @@ impl TentacleGuides {
         self.halfway.extend(halfway);
         self.chains
             .steady(&self.reference, &self.halfway, mean, &self.solid);
-        self.oral.steady(f, mean, &self.solid);
     }
 
     /// Where the slice draws the guides now, and the bell as a solid.
@@ -219,7 +217,6 @@ impl TentacleGuides {
         let guides = self.chains.guides();
         guide_reference(f.tentacles, roots, f.centroid, guides, &mut self.reference);
         self.solid.rebuild(f.bell, f.centroid, f.species);
-        self.oral.refresh_shape(f);
     }
 
     /// The water at the nodes `wanted` picks (by index along the guide) relative to the
@@ -265,18 +262,8 @@ impl OralGuides {
         }
         let stalk = (tubes > 0 && species.manubrium_length > 0.0) as usize;
         *self = Self {
-            stalk: GuideChains::hanging(
-                stalk,
-                Hanging::Within {
-                    relaxation: STALK_BACK,
-                },
-            ),
-            arms: GuideChains::hanging(
-                tubes - stalk,
-                Hanging::Within {
-                    relaxation: ARM_BACK,
-                },
-            ),
+            stalk: GuideChains::hanging(stalk, Hanging::MANUBRIUM),
+            arms: GuideChains::hanging(tubes - stalk, Hanging::ORAL_ARM),
             offsets: vec![Vec3::ZERO; tubes * GUIDE_NODES],
             tubes,
             length,
@@ -341,32 +328,19 @@ impl OralGuides {
         self.gather();
     }
 
-    /// A far jellyfish's steady trailing in the water halfway down each tube.
-    fn steady(&mut self, f: &GuideFrame, towing: f32, solid: &Solid) {
-        if self.tubes == 0 || self.reference.len() != self.offsets.len() {
-            return;
-        }
-        let k = self.stalk_nodes();
-        let carrying = carrying(f);
-        self.water.clear();
-        let halfway = self
-            .reference
-            .chunks(GUIDE_NODES)
-            .map(|q| q[GUIDE_NODES / 2]);
-        self.water
-            .extend(halfway.map(|p| relative_water(f, carrying, p)));
-        let stalk = self.stalk.guides();
-        self.stalk
-            .steady(&self.reference[..k], &self.water[..stalk], towing, solid);
-        let arms = &self.water[stalk..];
-        self.arms.steady(&self.reference[k..], arms, towing, solid);
-        self.gather();
-    }
-
     fn reset(&mut self) {
         self.stalk.reset();
         self.arms.reset();
         self.offsets.fill(Vec3::ZERO);
+    }
+
+    /// Drawn as the slice (or its replayed cycle) draws them, not followed: reset, and no
+    /// reference kept.
+    fn rest(&mut self) {
+        if !self.reference.is_empty() {
+            self.reset();
+            self.reference.clear();
+        }
     }
 
     /// Every tube's offsets in the surface's order.

@@ -55,6 +55,17 @@ pub enum Hanging {
     },
 }
 
+impl Hanging {
+    /// The manubrium, from the subumbrellar apex: bent back as the slice bends it.
+    pub const MANUBRIUM: Self = Self::Within {
+        relaxation: crate::sim::oral_arms::MANUBRIUM_RELAXATION,
+    };
+    /// An oral arm, from the mouth: bent back as the slice bends it.
+    pub const ORAL_ARM: Self = Self::Within {
+        relaxation: crate::sim::oral_arms::ARM_RELAXATION,
+    };
+}
+
 /// The guide chains of one jellyfish: offsets from the reference, body frame (the slice's
 /// 3D frame: metres, y the bell's axis, origin at the bell's centroid).
 #[derive(Clone, Debug, Default)]
@@ -343,6 +354,7 @@ fn straighten(offsets: &mut [Vec3], share: f32) {
 fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging: Hanging) {
     offsets[0] = Vec3::ZERO;
     let mut previous = reference[0];
+    let mut in_cavity = matches!(hanging, Hanging::Within { .. }) && solid.in_cavity_at(previous);
     for m in 1..reference.len() {
         let length = reference[m].distance(reference[m - 1]);
         let drawn = reference[m] + offsets[m];
@@ -353,7 +365,10 @@ fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging
         let placed = match hanging {
             Hanging::Outside => solid.keep_out(p, reference[m]),
             Hanging::Within { .. } => {
-                solid.keep_within(previous, p, reference[m - 1], reference[m])
+                let (placed, inside) =
+                    solid.keep_within((previous, in_cavity), p, reference[m - 1], reference[m]);
+                in_cavity = inside;
+                placed
             }
         };
         offsets[m] = placed - reference[m];

@@ -15,6 +15,11 @@ pub struct Solid {
     normals: Vec<Vec2>,
     /// The whole bell's bounding box in the meridian: most nodes hang below it.
     bounds: (Vec2, Vec2),
+    /// The cavity's, the same way.
+    cavity_bounds: (Vec2, Vec2),
+    /// The subumbrella from the apex to the right margin where it only ever descends
+    /// (else empty): a meridian point is in the cavity where it lies left of it.
+    descent: Vec<Vec2>,
     /// How far outside an outline a node is put back: a thousandth of the span.
     clearance: f32,
 }
@@ -39,12 +44,13 @@ impl Solid {
         }
         self.whole.push(bell[n - 1] - origin);
         self.whole.push(bell[0] - origin);
-        let (lo, hi) = self.whole.iter().chain(&self.cavity).fold(
-            (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
-        // The meridian's radius is never negative: the box spans the wider side.
-        self.bounds = (Vec2::new(0.0, lo.y), Vec2::new(hi.x.max(-lo.x), hi.y));
+        self.bounds = meridian_bounds(self.whole.iter().chain(&self.cavity));
+        self.cavity_bounds = meridian_bounds(&self.cavity);
+        let right = &self.cavity[mid..];
+        self.descent.clear();
+        if right.windows(2).all(|w| w[1].y < w[0].y && w[1].x >= 0.0) {
+            self.descent.extend_from_slice(right);
+        }
         self.clearance = 1e-3 * bell[0].distance(bell[n - 1]);
     }
 
@@ -55,8 +61,26 @@ impl Solid {
 
     /// Whether a meridian point lies within the bell's bounding box.
     fn near(&self, q: Vec2) -> bool {
-        let (lo, hi) = self.bounds;
-        q.cmpge(lo).all() && q.cmple(hi).all()
+        within(self.bounds, q)
+    }
+
+    /// Whether a meridian point lies in the cavity (its box first: most nodes hang below;
+    /// then, where the subumbrella only descends, the one stretch of it at the point's
+    /// height, the even-odd rule's crossing on that side).
+    fn in_cavity(&self, q: Vec2) -> bool {
+        if !within(self.cavity_bounds, q) {
+            return false;
+        }
+        if self.descent.len() < 2 {
+            return inside(&self.cavity, q);
+        }
+        let d = &self.descent;
+        let k = d.partition_point(|p| p.y > q.y);
+        if k == 0 || k == d.len() {
+            return false;
+        }
+        let (a, b) = (d[k - 1], d[k]);
+        q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x)
     }
 
     /// Where a node the slice draws at `reference` may be drawn instead of `p`: outside
@@ -80,35 +104,39 @@ impl Solid {
     /// mesoglea, and never through the subumbrella out of the cavity or into it, so
     /// in the cavity, or out of it through the aperture (a segment that does not leave or
     /// enter the cavity may cut a fold of the wall, as the straight chord of a curved
-    /// tube does). A node that would be is
-    /// put back on its predecessor's side: just inside the cavity, or just outside the
-    /// bell, at the same angle around the axis. Where the
-    /// slice itself draws the segment (`reference`, from `reference_previous`) through
-    /// the subumbrella, it is left: its oral chains are carried by its water alone.
+    /// tube does). A node that would be is put back on its predecessor's side: just
+    /// inside the cavity, or just outside the bell, at the same angle around the axis.
+    /// Where the slice itself draws the segment (`reference`, from `reference_previous`;
+    /// within the clearance) it is left, through the subumbrella or not: its oral chains
+    /// are carried by its water alone. `previous` comes with whether it is in the cavity
+    /// ([`Self::in_cavity_at`]), and so does the node placed: a chain is walked from its
+    /// root.
     pub fn keep_within(
         &self,
-        previous: Vec3,
+        (previous, in_a): (Vec3, bool),
         p: Vec3,
         reference_previous: Vec3,
         reference: Vec3,
-    ) -> Vec3 {
+    ) -> (Vec3, bool) {
         let (a, b) = (meridian(previous), meridian(p));
-        if !self.near(a) && !self.near(b) {
-            return p;
+        let in_b = self.in_cavity(b);
+        let drawn_as_the_slice = previous.distance_squared(reference_previous)
+            <= self.clearance * self.clearance
+            && p.distance_squared(reference) <= self.clearance * self.clearance;
+        if drawn_as_the_slice || (!self.near(a) && !self.near(b)) {
+            return (p, in_b);
         }
         let (ra, rb) = (meridian(reference_previous), meridian(reference));
-        let through = |a, b| {
-            let leaves = inside(&self.cavity, a) != inside(&self.cavity, b);
-            leaves && self.through_subumbrella(a, b)
-        };
-        let walled = self.in_wall(b) && !self.in_wall(rb);
-        let crossing = through(a, b) && !through(ra, rb);
+        let walled = !in_b && self.near(b) && inside(&self.whole, b) && !self.in_wall(rb);
+        let crossing = in_a != in_b
+            && self.through_subumbrella(a, b)
+            && !(self.in_cavity(ra) != self.in_cavity(rb) && self.through_subumbrella(ra, rb));
         if !(walled || crossing) {
-            return p;
+            return (p, in_b);
         }
-        let placed = if inside(&self.cavity, a) {
+        let placed = if in_a {
             let c = nearest_on(&self.cavity, b);
-            let inward = match inside(&self.cavity, b) {
+            let inward = match in_b {
                 true => b - c,
                 false => c - b,
             };
@@ -118,12 +146,17 @@ impl Solid {
         } else {
             b
         };
-        on_meridian(p, placed)
+        (on_meridian(p, placed), in_a)
+    }
+
+    /// Whether the body-frame point `p` lies in the cavity.
+    pub fn in_cavity_at(&self, p: Vec3) -> bool {
+        self.in_cavity(meridian(p))
     }
 
     /// Whether a meridian point lies in the mesoglea: in the bell, not in its cavity.
     fn in_wall(&self, q: Vec2) -> bool {
-        self.near(q) && inside(&self.whole, q) && !inside(&self.cavity, q)
+        self.near(q) && inside(&self.whole, q) && !self.in_cavity(q)
     }
 
     /// Whether the meridian segment `a`–`b` passes through the subumbrella (the cavity's
@@ -157,6 +190,20 @@ fn on_meridian(p: Vec3, placed: Vec2) -> Vec3 {
     let around = Vec2::new(p.x, p.z).normalize_or(Vec2::X);
     let r = placed.x.abs();
     Vec3::new(r * around.x, placed.y, r * around.y)
+}
+
+/// The box in the meridian (radius, height) of points on both sides of the axis: the
+/// radius is never negative, and spans the wider side.
+fn meridian_bounds<'a>(points: impl IntoIterator<Item = &'a Vec2>) -> (Vec2, Vec2) {
+    let (lo, hi) = points.into_iter().fold(
+        (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    (Vec2::new(0.0, lo.y), Vec2::new(hi.x.max(-lo.x), hi.y))
+}
+
+fn within((lo, hi): (Vec2, Vec2), q: Vec2) -> bool {
+    q.cmpge(lo).all() && q.cmple(hi).all()
 }
 
 fn inside(outline: &[Vec2], q: Vec2) -> bool {
