@@ -414,5 +414,26 @@ fn far_jellyfish_trail_their_fringe_in_a_shear() {
     // draws them.
     let g = guides(&app, e);
     assert_eq!(g.oral_guides(), 5);
-    assert!(g.oral_offsets().iter().all(|d| *d == Vec3::ZERO));
+    assert!(
+        g.oral_offsets().is_empty(),
+        "a far jellyfish's arms are not followed"
+    );
+    // Promoted, they are followed again, from where the slice draws them.
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels::default();
+    run(&mut app, e, 30, Some(Vec3::ZERO));
+    assert_eq!(
+        app.world().get::<JellyfishSlice>(e).unwrap().tier(),
+        Tier::Near
+    );
+    let g = guides(&app, e);
+    assert_eq!(g.oral_offsets().len(), 5 * GUIDE_NODES);
+    let moved = g
+        .oral_offsets()
+        .iter()
+        .map(|d| d.length())
+        .fold(0.0, f32::max);
+    assert!(
+        moved > 1e-4,
+        "the shear moves a near jellyfish's arms: {moved} m"
+    );
 }

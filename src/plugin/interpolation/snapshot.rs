@@ -60,7 +60,8 @@ impl Snapshot {
         lerp(&mut self.bell, &a.bell, &b.bell);
         let lerp3 = |out: &mut Vec<Vec3>, a: &[Vec3], b: &[Vec3]| {
             out.clear();
-            if a.len() == b.len() {
+            // (A far jellyfish's trail changes every few steps only.)
+            if a.len() == b.len() && a != b {
                 out.extend(a.iter().zip(b).map(|(a, b)| a.lerp(*b, t)));
             } else {
                 out.extend_from_slice(b);

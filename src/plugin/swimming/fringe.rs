@@ -99,7 +99,8 @@ impl TentacleGuides {
 
     /// How far the water has moved each oral tube's guide node from where the slice draws
     /// it, tube by tube in the surface's order (the manubrium first). Empty when the
-    /// species has no oral guides.
+    /// species has no oral guides, and while the jellyfish is far (its arms hang as its
+    /// replayed cycle draws them).
     pub fn oral_offsets(&self) -> &[Vec3] {
         &self.oral.offsets
     }
@@ -154,7 +155,7 @@ impl TentacleGuides {
                 self.oral.arms.turn_frame(turn);
                 self.refresh_shape(f);
                 self.oral.refresh_shape(f);
-                self.read_water(f, |_| true);
+                self.read_water(f);
                 self.chains.step(&GuideStep {
                     dt: f.dt,
                     reference: &self.reference,
@@ -169,8 +170,8 @@ impl TentacleGuides {
         }
     }
 
-    /// A far jellyfish's steady trailing in the water halfway down each guide, towed at
-    /// `mean` m/s: worked out every [`FAR_REFRESH`] steps (the current changes slowly; the
+    /// A far jellyfish's steady trailing in the water halfway down each guide (where the
+    /// species hangs it at rest), towed at `mean` m/s: worked out every [`FAR_REFRESH`] steps (the current changes slowly; the
     /// offsets ride on the replayed shape between, turning with the body), and not at all
     /// where the water there would move a tip by less than a hundredth of a tentacle.
     fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
@@ -192,10 +193,10 @@ impl TentacleGuides {
         };
         let negligible = 0.01 * mean.max(1e-4);
         let carrying = carrying(f);
-        let calm = (0..guides)
-            .map(probe)
-            .all(|p| relative_water(f, carrying, p).length() < negligible);
-        if calm {
+        self.halfway.clear();
+        let halfway = (0..guides).map(|g| relative_water(f, carrying, probe(g)));
+        self.halfway.extend(halfway);
+        if self.halfway.iter().all(|w| w.length() < negligible) {
             self.chains.reset();
             if self.reference.is_empty() {
                 self.refresh_shape(f);
@@ -203,10 +204,6 @@ impl TentacleGuides {
             return;
         }
         self.refresh_shape(f);
-        self.read_water(f, |m| m == GUIDE_NODES / 2);
-        self.halfway.clear();
-        let halfway = self.water.chunks(GUIDE_NODES).map(|w| w[GUIDE_NODES / 2]);
-        self.halfway.extend(halfway);
         self.chains
             .steady(&self.reference, &self.halfway, mean, &self.solid);
     }
@@ -219,19 +216,15 @@ impl TentacleGuides {
         self.solid.rebuild(f.bell, f.centroid, f.species);
     }
 
-    /// The water at the nodes `wanted` picks (by index along the guide) relative to the
-    /// current carrying the bell, body frame, m/s; zero elsewhere and where the field is
-    /// not finite.
-    fn read_water(&mut self, f: &GuideFrame, wanted: impl Fn(usize) -> bool) {
+    /// The water at each node relative to the current carrying the bell, body frame, m/s
+    /// (zero where the field is not finite).
+    fn read_water(&mut self, f: &GuideFrame) {
         let carrying = carrying(f);
         self.water.clear();
         let offsets = self.chains.offsets();
         for (k, q) in self.reference.iter().enumerate() {
             let local = *q + offsets.get(k).copied().unwrap_or_default();
-            self.water.push(match wanted(k % GUIDE_NODES) {
-                true => relative_water(f, carrying, local),
-                false => Vec3::ZERO,
-            });
+            self.water.push(relative_water(f, carrying, local));
         }
     }
 
@@ -295,6 +288,11 @@ impl OralGuides {
 
     /// One live step of the manubrium and the arms.
     fn step(&mut self, f: &GuideFrame, towing: f32, solid: &Solid) {
+        if self.offsets.len() != self.tubes * GUIDE_NODES {
+            // Followed again after resting: from where the slice draws them.
+            self.reset();
+            self.offsets.resize(self.tubes * GUIDE_NODES, Vec3::ZERO);
+        }
         if self.tubes == 0 || self.reference.len() != self.offsets.len() {
             return;
         }
@@ -334,11 +332,12 @@ impl OralGuides {
         self.offsets.fill(Vec3::ZERO);
     }
 
-    /// Drawn as the slice (or its replayed cycle) draws them, not followed: reset, and no
-    /// reference kept.
+    /// Drawn as the slice (or its replayed cycle) draws them, not followed: no offsets
+    /// (nothing to record, blend or pack) and no reference.
     fn rest(&mut self) {
-        if !self.reference.is_empty() {
+        if !self.offsets.is_empty() {
             self.reset();
+            self.offsets.clear();
             self.reference.clear();
         }
     }
