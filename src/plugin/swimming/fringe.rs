@@ -216,16 +216,9 @@ impl TentacleGuides {
         self.solid.rebuild(f.bell, f.centroid, f.species);
     }
 
-    /// The water at each node relative to the current carrying the bell, body frame, m/s
-    /// (zero where the field is not finite).
+    /// The water at each node relative to the current carrying the bell ([`water_along`]).
     fn read_water(&mut self, f: &GuideFrame) {
-        let carrying = carrying(f);
-        self.water.clear();
-        let offsets = self.chains.offsets();
-        for (k, q) in self.reference.iter().enumerate() {
-            let local = *q + offsets.get(k).copied().unwrap_or_default();
-            self.water.push(relative_water(f, carrying, local));
-        }
+        water_along(f, &self.reference, self.chains.offsets(), &mut self.water);
     }
 
     /// A game moved the jellyfish from `before` to `after` (poses of the newest step):
@@ -297,15 +290,7 @@ impl OralGuides {
             return;
         }
         let k = self.stalk_nodes();
-        let carrying = carrying(f);
-        self.water.clear();
-        let nodes = self
-            .reference
-            .iter()
-            .zip(&self.offsets)
-            .map(|(q, d)| *q + *d);
-        self.water
-            .extend(nodes.map(|p| relative_water(f, carrying, p)));
+        water_along(f, &self.reference, &self.offsets, &mut self.water);
         let (dt, species) = (f.dt, f.species);
         self.stalk.step(&GuideStep {
             dt,
@@ -351,6 +336,31 @@ impl OralGuides {
         let (head, tail) = self.offsets.split_at_mut(stalk.len());
         head.copy_from_slice(stalk);
         tail.copy_from_slice(arms);
+    }
+}
+
+/// The water relative to the current carrying the bell at each node of guides drawn at
+/// `reference + offsets`, body frame, m/s (zero where the field is not finite): read at
+/// each guide's root, middle and tip and straight between, as the tank's water varies
+/// over cells wider than a tentacle.
+fn water_along(f: &GuideFrame, reference: &[Vec3], offsets: &[Vec3], out: &mut Vec<Vec3>) {
+    const MID: usize = (GUIDE_NODES - 1) / 2;
+    let carrying = carrying(f);
+    out.clear();
+    if offsets.len() != reference.len() {
+        out.resize(reference.len(), Vec3::ZERO);
+        return;
+    }
+    for (q, d) in reference
+        .chunks(GUIDE_NODES)
+        .zip(offsets.chunks(GUIDE_NODES))
+    {
+        let read = |m: usize| relative_water(f, carrying, q[m] + d[m]);
+        let (root, mid, tip) = (read(0), read(MID), read(GUIDE_NODES - 1));
+        out.extend((0..GUIDE_NODES).map(|m| match m <= MID {
+            true => root.lerp(mid, m as f32 / MID as f32),
+            false => mid.lerp(tip, (m - MID) as f32 / (GUIDE_NODES - 1 - MID) as f32),
+        }));
     }
 }
 
