@@ -129,12 +129,26 @@ fn set(s: &mut Species, field: &str, value: f64) {
     }
 }
 
+/// Whether the field holds a count (a whole number from 0 up): -1 is stored as 0.
+fn is_count(field: &str) -> bool {
+    let (mut below, mut zero) = (Species::aurelia(), Species::aurelia());
+    set(&mut below, field, -1.0);
+    set(&mut zero, field, 0.0);
+    below == zero
+}
+
 /// A species with every field inside its limit (`bad` = None) or one field outside.
 fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
     let mut s = Species::aurelia();
     for (i, l) in LIMITS.iter().enumerate() {
         let value = if bad == Some(i) {
-            outside(rng, l)
+            let value = outside(rng, l);
+            // A count has no value below 0 (it would be stored as 0): past the top instead.
+            if value < l.min && l.min <= 0.0 && is_count(l.field) {
+                l.max + (l.max - l.min).max(1.0) * (0.01 + rng.unit())
+            } else {
+                value
+            }
         } else {
             inside(rng, l)
         };
