@@ -98,8 +98,8 @@ impl Species {
     }
 
     /// Guide chains the manubrium and the oral arms are drawn with: one per tube
-    /// ([`limits::oral_tubes`](super::limits::oral_tubes)), none when the species has no
-    /// guides (`tentacle_guides: 0`) and the hanging parts follow the slice alone.
+    /// ([`limits::oral_tubes`]), none when the species has no guides (`tentacle_guides:
+    /// 0`) and the hanging parts follow the slice alone.
     pub fn oral_guide_count(&self) -> usize {
         if self.tentacle_guides == 0 {
             return 0;

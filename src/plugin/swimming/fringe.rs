@@ -171,9 +171,10 @@ impl TentacleGuides {
     }
 
     /// A far jellyfish's steady trailing in the water halfway down each guide (where the
-    /// species hangs it at rest), towed at `mean` m/s: worked out every [`FAR_REFRESH`] steps (the current changes slowly; the
-    /// offsets ride on the replayed shape between, turning with the body), and not at all
-    /// where the water there would move a tip by less than a hundredth of a tentacle.
+    /// species hangs it at rest), towed at `mean` m/s: worked out every [`FAR_REFRESH`]
+    /// steps (the current changes slowly; the offsets ride on the replayed shape between,
+    /// turning with the body), and not at all where the water there would move a tip by
+    /// less than a hundredth of a tentacle.
     fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
         // A far jellyfish's oral arms, a few pixels mostly within its bell, hang as the
         // replayed cycle draws them.
