@@ -174,8 +174,7 @@ fn a_guide_hanging_within_the_bell_crosses_the_cavity_but_never_the_wall() {
         .collect();
     let mut chains = GuideChains::hanging(1, Hanging::Within { relaxation: 0.6 });
     let water = vec![Vec3::new(0.05, 0.0, 0.0); GUIDE_NODES];
-    let mut crossed = false;
-    for _ in 0..600 {
+    let step = |chains: &mut GuideChains| {
         chains.step(&GuideStep {
             dt: 1.0 / 60.0,
             reference: &reference,
@@ -183,7 +182,11 @@ fn a_guide_hanging_within_the_bell_crosses_the_cavity_but_never_the_wall() {
             towing: 0.005,
             filament: Filament::oral_arm(&species, 0.02),
             solid: &solid,
-        });
+        })
+    };
+    let mut crossed = false;
+    for _ in 0..600 {
+        step(&mut chains);
         for (q, d) in reference.iter().zip(chains.offsets()) {
             let p = *q + *d;
             let r = Vec2::new(p.x, p.z).length();
@@ -199,14 +202,7 @@ fn a_guide_hanging_within_the_bell_crosses_the_cavity_but_never_the_wall() {
     // The same guide hung as the fringe is kept out of the cavity too.
     let mut fringe = GuideChains::new(1);
     for _ in 0..60 {
-        fringe.step(&GuideStep {
-            dt: 1.0 / 60.0,
-            reference: &reference,
-            water: &water,
-            towing: 0.005,
-            filament: Filament::oral_arm(&species, 0.02),
-            solid: &solid,
-        });
+        step(&mut fringe);
     }
     let r = &reference;
     let cavity = |p: Vec3| p.y > 1e-4 && (p.x / 0.02).powi(2) + (p.y / 0.01).powi(2) < 0.99;
