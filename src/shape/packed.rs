@@ -28,7 +28,7 @@ use super::profile::Profile;
 use super::tentacles::{self, SIDEWAYS, TentacleLayout};
 use super::variation::{Variation, apex_fade, tentacle_reach};
 use crate::sim::SliceView;
-use crate::sim::guides::GUIDE_NODES;
+use crate::sim::guides::{GUIDE_NODES, Trail};
 use crate::species::Species;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
@@ -37,10 +37,28 @@ pub(crate) mod layout;
 
 use layout::*;
 
-/// The length of the block for a resolution.
+/// The length of the longest block for a resolution: its guides' trails included. A
+/// block carries only the trails that move something (see [`trailing`]).
 pub fn block_len(res: &Resolution) -> usize {
-    let trails = trail_len(res.guides) + trail_len(oral_guides(res));
+    trailing_block_len(res, res.guides, oral_guides(res))
+}
+
+/// The length of a block for a resolution carrying `guides` and `oral_guides` trails.
+fn trailing_block_len(res: &Resolution, guides: usize, oral_guides: usize) -> usize {
+    let trails = trail_len(guides) + trail_len(oral_guides);
     trail_start(res.rings, res.tentacles.points, oral_discs(res)) + trails
+}
+
+/// The guides of `trail` the block carries: the resolution's `guides` where the view
+/// follows them and one of them is off where the slice draws it, else none (a far
+/// jellyfish does not follow its oral arms; in still water nothing trails), which the
+/// shader reads as zero offsets.
+fn trailing(trail: Trail, guides: usize) -> usize {
+    let followed = trail.guides() == guides;
+    match followed && trail.offsets.iter().any(|d| *d != Vec3::ZERO) {
+        true => guides,
+        false => 0,
+    }
 }
 
 /// Where the trail starts: after the header, the rings, the tentacle and the oral discs.
@@ -104,6 +122,13 @@ impl ShapePacker {
             margin,
             &mut self.discs,
         );
+        let trails = [
+            (view.trail, trailing(view.trail, res.guides)),
+            (
+                view.oral_trail,
+                trailing(view.oral_trail, oral_guides(&res)),
+            ),
+        ];
         let start = out.len();
         out.resize(start + HEADER, 0.0);
         let header = &mut out[start..];
@@ -133,8 +158,8 @@ impl ShapePacker {
         header[H_ARM_WIDTH] = style.arm_width;
         header[H_ARM_FRILL] = style.frill;
         header[H_ARM_WAVES] = style.waves;
-        header[H_GUIDES] = bits(res.guides);
-        header[H_ORAL_GUIDES] = bits(oral_guides(&res));
+        header[H_GUIDES] = bits(trails[0].1);
+        header[H_ORAL_GUIDES] = bits(trails[1].1);
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -167,40 +192,29 @@ impl ShapePacker {
             out.resize(at + DISC, 0.0);
             write_disc(&mut out[at..], disc);
         }
-        // The trails, where the view's guides are the resolution's (else none this frame),
-        // as halves, two to a value.
-        for (trail, guides) in [
-            (view.trail, res.guides),
-            (view.oral_trail, oral_guides(&res)),
-        ] {
-            let matching = trail.guides() == guides;
-            for g in 0..guides {
-                let nodes = match matching {
-                    true => &trail.offsets[g * GUIDE_NODES + 1..(g + 1) * GUIDE_NODES],
-                    false => &[][..],
-                };
-                write_halves(nodes, out);
+        // The trails, as halves, two to a value.
+        for (trail, guides) in trails {
+            for nodes in trail.offsets.chunks_exact(GUIDE_NODES).take(guides) {
+                write_halves(&nodes[1..], out);
             }
         }
-        debug_assert_eq!(out.len() - start, block_len(&res));
+        debug_assert_eq!(
+            out.len() - start,
+            trailing_block_len(&res, trails[0].1, trails[1].1)
+        );
         Ok(())
     }
 }
 
-/// Appends one guide's node offsets (none: zeros) as [`TRAIL`] values of two halves each.
+/// Appends one guide's node offsets (its root's left out) as [`TRAIL`] values of two
+/// halves each.
 fn write_halves(nodes: &[Vec3], out: &mut Vec<f32>) {
     use half::slice::HalfFloatSliceExt;
-    const HALVES: usize = 2 * TRAIL;
-    let mut values = [0.0f32; HALVES];
-    let components = nodes.iter().flat_map(|d| d.to_array());
-    for (value, x) in values.iter_mut().zip(components) {
-        *value = x;
+    let mut values = [0.0f32; 2 * TRAIL];
+    for (value, d) in values.chunks_exact_mut(3).zip(nodes) {
+        value.copy_from_slice(&d.to_array());
     }
-    if values.iter().all(|x| *x == 0.0) {
-        out.extend_from_slice(&[0.0; TRAIL]);
-        return;
-    }
-    let mut halves = [half::f16::ZERO; HALVES];
+    let mut halves = [half::f16::ZERO; 2 * TRAIL];
     halves.convert_from_f32_slice(&values);
     let pair =
         |h: &[half::f16]| f32::from_bits(h[0].to_bits() as u32 | (h[1].to_bits() as u32) << 16);

@@ -130,6 +130,58 @@ fn oral_guides_move_their_tubes() {
     }
 }
 
+/// A block carries only the trails that move something: a view whose guides all sit
+/// where the slice draws them (still water), or that does not follow its oral arms (a far
+/// jellyfish), packs none of them, and its vertices are the CPU mesh's all the same.
+#[test]
+fn a_block_leaves_out_trails_that_move_nothing() {
+    let species = Species::aurelia();
+    let res = Resolution::of(&species);
+    let (guides, tubes) = (species.guide_count(), species.oral_guide_count());
+    let mut slice = SliceOutline::contracted(&species, 31, 12, 0.5);
+    let pack = |s: &SliceOutline| {
+        let mut block = Vec::new();
+        ShapePacker::default()
+            .pack(&s.view(), &species, res, 7, 1.0, &mut block)
+            .unwrap();
+        block
+    };
+    let full = block_len(&res);
+    // Followed, but nothing off the slice's drawing: no trail at all.
+    slice.trail = vec![Vec3::ZERO; guides * GUIDE_NODES];
+    slice.oral_trail = vec![Vec3::ZERO; tubes * GUIDE_NODES];
+    let still = slice.clone();
+    // The fringe trailing, the oral arms not followed: the fringe's trail alone.
+    let mut far = slice;
+    far.trail[GUIDE_NODES - 1] = Vec3::new(0.002, 0.0, 0.001);
+    far.oral_trail.clear();
+    for (s, carried, name) in [(&still, (0, 0), "still"), (&far, (guides, 0), "far")] {
+        let block = pack(s);
+        let b = Block(&block);
+        assert_eq!(
+            (b.count(H_GUIDES), b.count(H_ORAL_GUIDES)),
+            carried,
+            "{name}"
+        );
+        assert_eq!(
+            block.len(),
+            full - (guides - carried.0 + tubes) * TRAIL,
+            "{name}"
+        );
+        let mesh = JellyMesh::from_slice(&s.view(), &species, 7, 1.0).unwrap();
+        let worst = (0..mesh.tentacles.vertex_count())
+            .map(|i| {
+                let cpu = Vec3::from_array(mesh.tentacles.positions[i]);
+                tentacle_vertex(b, i).0.distance(cpu)
+            })
+            .fold(0.0f32, f32::max);
+        assert!(
+            worst < 1e-5,
+            "{name}: a tentacle vertex {worst:.2e} m off the CPU's"
+        );
+    }
+}
+
 /// `v` as the packed shape carries a trail: each component rounded to a half.
 fn halves(v: Vec3) -> Vec3 {
     v.to_array().map(|x| half::f16::from_f32(x).to_f32()).into()
