@@ -1,6 +1,6 @@
 //! The fringe's guide chains: one step of a moon jelly's eight guides and the five of its
-//! manubrium and oral arms (where the slice draws them, the bell as a solid, the filament
-//! steps), what a near jellyfish pays per slice step for a fringe and arms that trail in
+//! manubrium and oral arms (where the slice draws them, the bell as a solid, the water
+//! read at three points a guide, the filament steps), what a near jellyfish pays per slice step for a fringe and arms that trail in
 //! the 3D water. A frame at 60 Hz takes about 0.6 of the moon jelly's steps. Prints the
 //! cost per step and per 60 Hz frame.
 
@@ -8,9 +8,11 @@ use bevy_jellyfish::Species;
 use bevy_jellyfish::shape::SliceOutline;
 use bevy_jellyfish::shape::oral::{self, OralStyle};
 use bevy_jellyfish::shape::tentacles::{TentacleLayout, guide_reference};
-use bevy_jellyfish::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid};
+use bevy_jellyfish::sim::guides::{
+    Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid, read_along,
+};
 use criterion::{Criterion, criterion_group, criterion_main};
-use glam::{Vec2, Vec3};
+use glam::{Quat, Vec2, Vec3};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -35,14 +37,21 @@ fn step(c: &mut Criterion) {
     let (style, apex) = (OralStyle::of(&species), view.bell[view.bell.len() / 2]);
     let mut stalk = GuideChains::hanging(1, Hanging::MANUBRIUM);
     let mut arms = GuideChains::hanging(tubes - 1, Hanging::ORAL_ARM);
-    let (mut oral_reference, mut oral_water) = (Vec::new(), Vec::new());
+    let (mut oral_reference, mut oral_water, mut oral_offsets) =
+        (Vec::new(), Vec::new(), Vec::new());
     let dt = species.step_length();
-    let stream = |t: f32, p: &Vec3| Vec3::new(0.01 * (t + p.y * 40.0).sin(), 0.0, 0.004);
+    // The water as the plugin reads it: at each guide's root, middle and tip, each point
+    // turned into the world (the jellyfish tilted) and the answer turned back.
+    let (tilt, carrying) = (Quat::from_rotation_z(0.3), Vec3::new(0.0, 0.0, 0.002));
+    let stream = |t: f32, p: Vec3| {
+        let world = tilt * p;
+        let water = Vec3::new(0.01 * (t + world.y * 40.0).sin(), 0.0, 0.004);
+        tilt.inverse() * (water - carrying)
+    };
     let mut one_step = |t: f32| {
         guide_reference(view.tentacles, roots, centroid, guides, &mut reference);
         solid.rebuild(view.bell, centroid, &species);
-        water.clear();
-        water.extend(reference.iter().map(|p| stream(t, p)));
+        read_along(&reference, chains.offsets(), |p| stream(t, p), &mut water);
         chains.step(&GuideStep {
             dt,
             reference: &reference,
@@ -53,9 +62,11 @@ fn step(c: &mut Criterion) {
         });
         let oral = (view.oral_arms, apex, centroid);
         oral::guide_reference(&layout, &style, oral.0, oral.1, oral.2, &mut oral_reference);
-        oral_water.clear();
-        oral_water.extend(oral_reference.iter().map(|p| stream(t, p)));
         let (k, chain) = (GUIDE_NODES, &oral_reference);
+        oral_offsets.clear();
+        oral_offsets.extend_from_slice(stalk.offsets());
+        oral_offsets.extend_from_slice(arms.offsets());
+        read_along(chain, &oral_offsets, |p| stream(t, p), &mut oral_water);
         for (guides, range, filament) in [
             (&mut stalk, 0..k, Filament::manubrium(&species, 0.01)),
             (

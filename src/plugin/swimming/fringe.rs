@@ -13,7 +13,9 @@ use super::Pose;
 use crate::plugin::water::AmbientWater;
 use crate::shape::oral::{self, OralStyle};
 use crate::shape::tentacles::{TentacleLayout, guide_reference};
-use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid};
+use crate::sim::guides::{
+    Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid, read_along,
+};
 use crate::species::Species;
 use bevy::prelude::*;
 
@@ -36,8 +38,9 @@ pub struct TentacleGuides {
     since_refresh: u32,
 }
 
-/// A far jellyfish works out its steady trailing every this many steps.
-const FAR_REFRESH: u32 = 4;
+/// A far jellyfish works out its steady trailing about this often, s: the water around it
+/// changes over seconds, and it is a few pixels.
+const FAR_REFRESH: f32 = 0.25;
 
 /// The oral tubes' guides: the manubrium's (stiff, from the apex) and the arms' (limp,
 /// from where the slice puts the mouth: the manubrium's own sway, under its radius, is
@@ -172,7 +175,7 @@ impl TentacleGuides {
 
     /// A far jellyfish's steady trailing in the water halfway down each guide (where the
     /// species hangs it at rest), towed at `mean` m/s: worked out every [`FAR_REFRESH`]
-    /// steps (the current changes slowly; the offsets ride on the replayed shape between,
+    /// seconds, a whole number of steps (the current changes slowly; the offsets ride on the replayed shape between,
     /// turning with the body), and not at all where the water there would move a tip by
     /// less than a hundredth of a tentacle.
     fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
@@ -180,7 +183,8 @@ impl TentacleGuides {
         // replayed cycle draws them.
         self.oral.rest();
         self.since_refresh += 1;
-        if self.since_refresh < FAR_REFRESH && !self.reference.is_empty() {
+        let due = self.since_refresh as f32 * f.dt >= FAR_REFRESH;
+        if !due && !self.reference.is_empty() {
             return;
         }
         self.since_refresh = 0;
@@ -341,28 +345,11 @@ impl OralGuides {
 }
 
 /// The water relative to the current carrying the bell at each node of guides drawn at
-/// `reference + offsets`, body frame, m/s (zero where the field is not finite): read at
-/// each guide's root, middle and tip and straight between, as the tank's water varies
-/// over cells wider than a tentacle.
+/// `reference + offsets`, body frame, m/s ([`read_along`]: at each guide's root, middle
+/// and tip).
 fn water_along(f: &GuideFrame, reference: &[Vec3], offsets: &[Vec3], out: &mut Vec<Vec3>) {
-    const MID: usize = (GUIDE_NODES - 1) / 2;
     let carrying = carrying(f);
-    out.clear();
-    if offsets.len() != reference.len() {
-        out.resize(reference.len(), Vec3::ZERO);
-        return;
-    }
-    for (q, d) in reference
-        .chunks(GUIDE_NODES)
-        .zip(offsets.chunks(GUIDE_NODES))
-    {
-        let read = |m: usize| relative_water(f, carrying, q[m] + d[m]);
-        let (root, mid, tip) = (read(0), read(MID), read(GUIDE_NODES - 1));
-        out.extend((0..GUIDE_NODES).map(|m| match m <= MID {
-            true => root.lerp(mid, m as f32 / MID as f32),
-            false => mid.lerp(tip, (m - MID) as f32 / (GUIDE_NODES - 1 - MID) as f32),
-        }));
-    }
+    read_along(reference, offsets, |p| relative_water(f, carrying, p), out);
 }
 
 /// The current carrying the bell, world units per second.

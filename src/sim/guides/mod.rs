@@ -23,9 +23,11 @@
 
 mod solid;
 mod trail;
+mod water;
 
 pub use solid::Solid;
 pub use trail::{Trail, along, between};
+pub use water::read_along;
 
 use crate::species::Species;
 use glam::{Quat, Vec3};
