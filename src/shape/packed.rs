@@ -38,7 +38,8 @@ pub(crate) mod layout;
 use layout::*;
 
 /// The length of the longest block for a resolution: its guides' trails included. A
-/// block carries only the trails that move something (see [`trailing`]).
+/// block carries only the trails that move something (none for a far jellyfish's oral
+/// arms, which it does not follow, nor in still water).
 pub fn block_len(res: &Resolution) -> usize {
     trailing_block_len(res, res.guides, oral_guides(res))
 }

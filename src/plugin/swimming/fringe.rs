@@ -10,13 +10,10 @@
 //! at its guides, towed at its recorded mean speed.
 
 use super::Pose;
-use crate::plugin::water::AmbientWater;
-use crate::shape::oral::{self, OralStyle};
-use crate::shape::tentacles::{TentacleLayout, guide_reference};
-use crate::sim::guides::{
-    Filament, GUIDE_NODES, GuideChains, GuideStep, Hanging, Solid, read_along,
-};
-use crate::species::Species;
+use super::guide_frame::{GuideFrame, carrying, relative_water, water_along};
+use super::oral_guides::OralGuides;
+use crate::shape::tentacles::guide_reference;
+use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid};
 use bevy::prelude::*;
 
 /// A jellyfish's guide chains: where its fringe trails in the water around it. Read only;
@@ -42,47 +39,6 @@ pub struct TentacleGuides {
 /// changes over seconds, and it is a few pixels.
 const FAR_REFRESH: f32 = 0.25;
 
-/// The oral tubes' guides: the manubrium's (stiff, from the apex) and the arms' (limp,
-/// from where the slice puts the mouth: the manubrium's own sway, under its radius, is
-/// not passed on to them), with the reference the slice draws them at.
-#[derive(Clone, Debug, Default)]
-struct OralGuides {
-    stalk: GuideChains,
-    arms: GuideChains,
-    /// Every tube's reference, in the surface's order (the manubrium first).
-    reference: Vec<Vec3>,
-    water: Vec<Vec3>,
-    /// Every tube's offsets, in the surface's order.
-    offsets: Vec<Vec3>,
-    /// The species' oral tubes these were made for, and their length, m.
-    tubes: usize,
-    length: f32,
-}
-
-/// One slice step as the guides see it.
-pub(crate) struct GuideFrame<'a> {
-    pub species: &'a Species,
-    /// The bell's subumbrella and the two tentacle chains after the step, slice frame.
-    pub bell: &'a [Vec2],
-    pub tentacles: [&'a [Vec2]; 2],
-    /// The two oral chains after the step, slice frame (empty without oral tubes).
-    pub oral_arms: [&'a [Vec2]; 2],
-    /// The bell's centroid in the same frame (the body frame's origin).
-    pub centroid: Vec2,
-    /// The step, s.
-    pub dt: f32,
-    /// How far the bell swam along its axis in the step, m.
-    pub surge: f32,
-    /// The pose before and after the step's travel.
-    pub before: Pose,
-    pub after: Pose,
-    /// World units per metre of slice, per axis.
-    pub scale: Vec3,
-    pub water: &'a AmbientWater,
-    /// World time the water is read at, s.
-    pub time: f64,
-}
-
 impl TentacleGuides {
     /// Guides around the margin (0: the fringe follows the slice alone).
     pub fn guides(&self) -> usize {
@@ -105,24 +61,24 @@ impl TentacleGuides {
     /// species has no oral guides, and while the jellyfish is far (its arms hang as its
     /// replayed cycle draws them).
     pub fn oral_offsets(&self) -> &[Vec3] {
-        &self.oral.offsets
+        self.oral.offsets()
     }
 
     /// Where the slice draws each oral tube's guide, as [`Self::reference`].
     pub fn oral_reference(&self) -> &[Vec3] {
-        &self.oral.reference
+        self.oral.reference()
     }
 
     /// Oral guides: the manubrium (if the species has one and guides) and the arms.
     pub fn oral_guides(&self) -> usize {
-        self.oral.tubes
+        self.oral.tubes()
     }
 
     /// Oral tube `t`'s guide nodes as drawn, root first, local frame.
     pub fn oral_drawn(&self, t: usize) -> impl Iterator<Item = Vec3> + '_ {
         let range = t * GUIDE_NODES..(t + 1) * GUIDE_NODES;
-        let reference = self.oral.reference.get(range.clone()).unwrap_or_default();
-        let offsets = self.oral.offsets.get(range).unwrap_or_default();
+        let reference = self.oral.reference().get(range.clone()).unwrap_or_default();
+        let offsets = self.oral.offsets().get(range).unwrap_or_default();
         reference.iter().zip(offsets).map(|(q, d)| *q + *d)
     }
 
@@ -144,7 +100,7 @@ impl TentacleGuides {
             self.length = f.species.tentacle_length;
         }
         self.oral.fit(f.species);
-        if guides == 0 && self.oral.tubes == 0 {
+        if guides == 0 && self.oral.tubes() == 0 {
             self.reference.clear();
             return;
         }
@@ -154,8 +110,7 @@ impl TentacleGuides {
                 // The body turned in the step; the water holds the nodes where they were.
                 let turn = (f.before.rotation.inverse() * f.after.rotation).normalize();
                 self.chains.turn_frame(turn);
-                self.oral.stalk.turn_frame(turn);
-                self.oral.arms.turn_frame(turn);
+                self.oral.turn_frame(turn);
                 self.refresh_shape(f);
                 self.oral.refresh_shape(f);
                 self.read_water(f);
@@ -235,137 +190,6 @@ impl TentacleGuides {
             inverse * (world - after.position) / scale
         };
         self.chains.move_frame(to_body, self.length, &self.solid);
-        let reach = self.oral.length;
-        self.oral.stalk.move_frame(to_body, reach, &self.solid);
-        self.oral.arms.move_frame(to_body, reach, &self.solid);
-        self.oral.gather();
+        self.oral.moved(to_body, &self.solid);
     }
-}
-
-impl OralGuides {
-    /// Guides for the species' oral tubes (made afresh when their number or length
-    /// changed).
-    fn fit(&mut self, species: &Species) {
-        let tubes = species.oral_guide_count();
-        let length = species.manubrium_length + species.oral_arm_length;
-        if tubes == self.tubes && length == self.length {
-            return;
-        }
-        let stalk = (tubes > 0 && species.manubrium_length > 0.0) as usize;
-        *self = Self {
-            stalk: GuideChains::hanging(stalk, Hanging::MANUBRIUM),
-            arms: GuideChains::hanging(tubes - stalk, Hanging::ORAL_ARM),
-            offsets: vec![Vec3::ZERO; tubes * GUIDE_NODES],
-            tubes,
-            length,
-            ..default()
-        };
-    }
-
-    /// Nodes of the manubrium's guide (none without one).
-    fn stalk_nodes(&self) -> usize {
-        self.stalk.guides() * GUIDE_NODES
-    }
-
-    /// Where the slice draws every tube's guide now.
-    fn refresh_shape(&mut self, f: &GuideFrame) {
-        if self.tubes == 0 {
-            self.reference.clear();
-            return;
-        }
-        let layout = TentacleLayout {
-            count: self.tubes,
-            sides: oral::ORAL_SIDES,
-            points: 2,
-        };
-        let apex = f.bell[f.bell.len() / 2];
-        let style = OralStyle::of(f.species);
-        let (chains, reference) = (f.oral_arms, &mut self.reference);
-        oral::guide_reference(&layout, &style, chains, apex, f.centroid, reference);
-    }
-
-    /// One live step of the manubrium and the arms.
-    fn step(&mut self, f: &GuideFrame, towing: f32, solid: &Solid) {
-        if self.offsets.len() != self.tubes * GUIDE_NODES {
-            // Followed again after resting: from where the slice draws them.
-            self.reset();
-            self.offsets.resize(self.tubes * GUIDE_NODES, Vec3::ZERO);
-        }
-        if self.tubes == 0 || self.reference.len() != self.offsets.len() {
-            return;
-        }
-        let k = self.stalk_nodes();
-        water_along(f, &self.reference, &self.offsets, &mut self.water);
-        let (dt, species) = (f.dt, f.species);
-        self.stalk.step(&GuideStep {
-            dt,
-            reference: &self.reference[..k],
-            water: &self.water[..k],
-            towing,
-            filament: Filament::manubrium(species, towing),
-            solid,
-        });
-        self.arms.step(&GuideStep {
-            dt,
-            reference: &self.reference[k..],
-            water: &self.water[k..],
-            towing,
-            filament: Filament::oral_arm(species, towing),
-            solid,
-        });
-        self.gather();
-    }
-
-    fn reset(&mut self) {
-        self.stalk.reset();
-        self.arms.reset();
-        self.offsets.fill(Vec3::ZERO);
-    }
-
-    /// Drawn as the slice (or its replayed cycle) draws them, not followed: no offsets
-    /// (nothing to record, blend or pack) and no reference.
-    fn rest(&mut self) {
-        if !self.offsets.is_empty() {
-            self.reset();
-            self.offsets.clear();
-            self.reference.clear();
-        }
-    }
-
-    /// Every tube's offsets in the surface's order.
-    fn gather(&mut self) {
-        let (stalk, arms) = (self.stalk.offsets(), self.arms.offsets());
-        if stalk.len() + arms.len() != self.offsets.len() {
-            return;
-        }
-        let (head, tail) = self.offsets.split_at_mut(stalk.len());
-        head.copy_from_slice(stalk);
-        tail.copy_from_slice(arms);
-    }
-}
-
-/// The water relative to the current carrying the bell at each node of guides drawn at
-/// `reference + offsets`, body frame, m/s ([`read_along`]: at each guide's root, middle
-/// and tip).
-fn water_along(f: &GuideFrame, reference: &[Vec3], offsets: &[Vec3], out: &mut Vec<Vec3>) {
-    let carrying = carrying(f);
-    read_along(reference, offsets, |p| relative_water(f, carrying, p), out);
-}
-
-/// The current carrying the bell, world units per second.
-fn carrying(f: &GuideFrame) -> Vec3 {
-    finite(f.water.velocity(f.after.position, f.time))
-}
-
-/// The water at the body-frame point `local` less the current `carrying` the bell, body
-/// frame, m/s (zero where the field is not finite).
-fn relative_water(f: &GuideFrame, carrying: Vec3, local: Vec3) -> Vec3 {
-    let (pose, scale) = (f.after, f.scale);
-    let world = pose.position + pose.rotation * (scale * local);
-    let relative = finite(f.water.velocity(world, f.time)) - carrying;
-    finite(pose.rotation.inverse() * relative / scale)
-}
-
-fn finite(v: Vec3) -> Vec3 {
-    if v.is_finite() { v } else { Vec3::ZERO }
 }

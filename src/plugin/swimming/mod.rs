@@ -4,12 +4,14 @@
 //! around it ([`TentacleGuides`]).
 
 mod fringe;
+mod guide_frame;
+mod oral_guides;
 mod pose;
 mod steering;
 mod travel;
 
-pub(crate) use fringe::GuideFrame;
 pub use fringe::TentacleGuides;
+pub(crate) use guide_frame::GuideFrame;
 pub use pose::Pose;
 pub use steering::{Steering, SteeringTarget};
 pub(crate) use travel::{Stroke, Travel};
