@@ -84,7 +84,6 @@ pub(crate) fn upload(
     materials: Option<ResMut<Assets<SurfaceMaterial>>>,
     timings: Res<JellyfishTimings>,
     mut offsets: Local<Vec<u32>>,
-    mut shapes: Local<Vec<f32>>,
 ) {
     let (Some(mut buffers), Some(mut assets)) = (buffers, assets) else {
         return;
@@ -92,14 +91,16 @@ pub(crate) fn upload(
     let start = Instant::now();
     offsets.clear();
     offsets.resize(slots.len as usize, 0);
-    shapes.clear();
+    // Gathered straight into the bytes handed to the renderer (each frame's go to the
+    // render world): one copy of a few megabytes a frame, not two.
+    let mut shapes: Vec<u8> = Vec::with_capacity(4 * buffers.capacity.1);
     for meshes in &jellyfish {
         if meshes.path == Some(SurfacePath::Templates)
             && let Some(slot) = meshes.slot
             && !meshes.block.is_empty()
         {
-            offsets[slot as usize] = shapes.len() as u32;
-            shapes.extend_from_slice(&meshes.block);
+            offsets[slot as usize] = (shapes.len() / 4) as u32;
+            extend_words(&mut shapes, &meshes.block);
         }
     }
     if shapes.is_empty() {
@@ -114,24 +115,15 @@ pub(crate) fn upload(
     };
     let capacity = (
         grow(offsets.len(), buffers.capacity.0),
-        grow(shapes.len(), buffers.capacity.1),
+        grow(shapes.len() / 4, buffers.capacity.1),
     );
     let grown = capacity != buffers.capacity;
     buffers.capacity = capacity;
     offsets.resize(capacity.0, 0);
-    shapes.resize(capacity.1, 0.0);
-    // The GPU reads little-endian words: on such a host the bytes are the memory as is.
-    let bytes = |words: &[u32]| -> Vec<u8> {
-        if cfg!(target_endian = "little") {
-            bytemuck::cast_slice(words).to_vec()
-        } else {
-            words.iter().flat_map(|w| w.to_le_bytes()).collect()
-        }
-    };
-    let written = [
-        (&buffers.offsets, bytes(&offsets)),
-        (&buffers.shapes, bytes(bytemuck::cast_slice(&shapes))),
-    ];
+    shapes.resize(4 * capacity.1, 0);
+    let mut offset_bytes = Vec::with_capacity(4 * offsets.len());
+    extend_words(&mut offset_bytes, bytemuck::cast_slice::<u32, f32>(&offsets));
+    let written = [(&buffers.offsets, offset_bytes), (&buffers.shapes, shapes)];
     let mut total = 0;
     for (handle, data) in written {
         total += data.len();
@@ -151,4 +143,13 @@ pub(crate) fn upload(
     }
     timings.add_mesh_bytes(total);
     timings.add_meshing(start.elapsed());
+}
+
+/// Appends `words` as the GPU reads them, little-endian: on such a host, the memory as is.
+fn extend_words(bytes: &mut Vec<u8>, words: &[f32]) {
+    if cfg!(target_endian = "little") {
+        bytes.extend_from_slice(bytemuck::cast_slice(words));
+    } else {
+        bytes.extend(words.iter().flat_map(|w| w.to_bits().to_le_bytes()));
+    }
 }
