@@ -356,7 +356,10 @@ fn straighten(offsets: &mut [Vec3], share: f32) {
 fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging: Hanging) {
     offsets[0] = Vec3::ZERO;
     let mut previous = reference[0];
-    let mut in_cavity = matches!(hanging, Hanging::Within { .. }) && solid.in_cavity_at(previous);
+    // A root on the subumbrella (the manubrium's, at the apex) is on the cavity's edge:
+    // the chain starts on the side its reference hangs into.
+    let first = reference[0].lerp(reference[1.min(reference.len() - 1)], 0.5);
+    let mut in_cavity = matches!(hanging, Hanging::Within { .. }) && solid.in_cavity_at(first);
     for m in 1..reference.len() {
         let length = reference[m].distance(reference[m - 1]);
         let drawn = reference[m] + offsets[m];

@@ -213,3 +213,42 @@ fn a_guide_hanging_within_the_bell_crosses_the_cavity_but_never_the_wall() {
     // Nodes the slice itself draws inside stay where it draws them (the root).
     assert!(inside.count() <= 2);
 }
+
+#[test]
+fn a_guide_hanging_from_the_apex_pushed_up_stays_in_the_cavity() {
+    // The manubrium hangs from the subumbrella's apex, its root on the wall. A game holding
+    // a swimming jellyfish back moves the body down every frame, so the nodes, left in the
+    // water, rise into the apex: they stay in the cavity, never pushed out over the top.
+    let (solid, species) = (solid(), crate::species::Species::aurelia());
+    let apex = 0.01;
+    let reference: Vec<Vec3> = (0..GUIDE_NODES)
+        .map(|m| {
+            Vec3::new(
+                0.0005,
+                apex - 0.008 * m as f32 / (GUIDE_NODES - 1) as f32,
+                0.0,
+            )
+        })
+        .collect();
+    let mut chains = GuideChains::hanging(1, Hanging::MANUBRIUM);
+    let still = vec![Vec3::ZERO; GUIDE_NODES];
+    for frame in 0..120 {
+        chains.step(&GuideStep {
+            dt: 1.0 / 60.0,
+            reference: &reference,
+            water: &still,
+            towing: 0.0,
+            filament: Filament::manubrium(&species, 0.0),
+            solid: &solid,
+        });
+        chains.move_frame(|p| p + Vec3::new(0.0002, 0.002, 0.0), 0.008, &solid);
+        for (m, (q, d)) in reference.iter().zip(chains.offsets()).enumerate() {
+            let p = *q + *d;
+            let outside = p.y > 0.0 && !solid.in_cavity_at(p);
+            assert!(
+                m == 0 || !outside,
+                "frame {frame}: node {m} at {p} left the cavity through the wall"
+            );
+        }
+    }
+}

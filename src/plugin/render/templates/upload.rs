@@ -122,7 +122,10 @@ pub(crate) fn upload(
     offsets.resize(capacity.0, 0);
     shapes.resize(4 * capacity.1, 0);
     let mut offset_bytes = Vec::with_capacity(4 * offsets.len());
-    extend_words(&mut offset_bytes, bytemuck::cast_slice::<u32, f32>(&offsets));
+    extend_words(
+        &mut offset_bytes,
+        bytemuck::cast_slice::<u32, f32>(&offsets),
+    );
     let written = [(&buffers.offsets, offset_bytes), (&buffers.shapes, shapes)];
     let mut total = 0;
     for (handle, data) in written {
