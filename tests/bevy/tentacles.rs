@@ -242,7 +242,13 @@ fn no_guide_node_enters_the_bell_in_a_thousand_strokes() {
                 let cavity = |p: Vec2| inside(&outline, p);
                 let from_cavity = |a: Vec2, b: Vec2| cavity(a) != cavity(b);
                 let (ra, rb) = (meridian(ra), meridian(rb));
-                if !from_cavity(a, b) || (from_cavity(ra, rb) && crosses(&outline, ra, rb)) {
+                // A root on the subumbrella (the manubrium's, at the apex) is on the
+                // cavity's edge: it counts on the side its reference hangs into.
+                let leaves = match m {
+                    1 => cavity(ra.lerp(rb, 0.5)) != cavity(b),
+                    _ => from_cavity(a, b),
+                };
+                if !leaves || (from_cavity(ra, rb) && crosses(&outline, ra, rb)) {
                     continue;
                 }
                 let w = [a, b];
