@@ -22,7 +22,8 @@ pub fn catmull_rom(points: &[Vec2], u: f32) -> Vec2 {
     } else {
         0.0
     };
-    let i = (u.floor() as usize).min(n - 2);
+    // `u` is finite and not negative: truncating is flooring, without `floorf`'s call.
+    let i = (u as usize).min(n - 2);
     let t = u - i as f32;
     let (p1, p2) = (points[i], points[i + 1]);
     let p0 = if i > 0 { points[i - 1] } else { 2.0 * p1 - p2 };
