@@ -17,7 +17,16 @@ use std::hint::black_box;
 use std::time::Instant;
 
 fn step(c: &mut Criterion) {
-    let species = Species::aurelia();
+    for (name, species) in [
+        ("aurelia", Species::aurelia()),
+        ("aequorea", Species::aequorea()),
+        ("sarsia", Species::sarsia()),
+    ] {
+        species_step(c, name, species);
+    }
+}
+
+fn species_step(c: &mut Criterion, name: &str, species: Species) {
     let guides = species.guide_count();
     // A bell half contracted, its fringe in a cross stream that keeps the guides moving.
     let slice = SliceOutline::contracted(&species, 61, 30, 0.5);
@@ -86,7 +95,7 @@ fn step(c: &mut Criterion) {
         }
     };
     let mut t = 0.0;
-    c.bench_function("guides/aurelia_step", |b| {
+    c.bench_function(&format!("guides/{name}_step"), |b| {
         b.iter(|| {
             t += dt;
             one_step(black_box(t));
@@ -101,7 +110,7 @@ fn step(c: &mut Criterion) {
     let per_step = start.elapsed().as_secs_f64() / runs as f64;
     let per_frame = per_step * (1.0 / 60.0) / dt as f64;
     println!(
-        "guides: {guides} guides and {tubes} oral ones, {:.2} µs a step, {:.2} µs a 60 Hz frame \
+        "guides, {name}: {guides} guides and {tubes} oral ones, {:.2} µs a step, {:.2} µs a 60 Hz frame \
          per near jellyfish",
         per_step * 1e6,
         per_frame * 1e6
