@@ -122,6 +122,8 @@ pub(crate) struct Swimmer {
     wander: Vec3,
     /// How far its bell and fringe reach, world units.
     radius: f32,
+    /// Its number in the school: which fixed ticks it steers in ([`steer::STEER_EVERY`]).
+    number: u32,
 }
 
 /// Members by place, x then y then z: one order every run, whatever the entities.
@@ -140,6 +142,7 @@ fn member(
     rotation: Quat,
     scale: f32,
     radius: f32,
+    number: u32,
     rng: &mut place::SplitMix,
 ) -> impl Bundle {
     (
@@ -150,6 +153,7 @@ fn member(
         Swimmer {
             wander: Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 100.0,
             radius,
+            number,
         },
         Steering::heading(rotation * Vec3::Y).with_agility(spec.agility),
         Transform::from_translation(at)

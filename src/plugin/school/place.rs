@@ -96,7 +96,7 @@ pub(super) fn fill_schools(
         }
         let mut rng = SplitMix::new(spec.seed);
         let scale = spec.scale.max(1e-6);
-        for _ in 0..spec.count {
+        for number in 0..spec.count {
             let size = scale * (1.0 + spec.size_spread.clamp(0.0, 0.9) * rng.signed());
             let radius = reach(kind, size);
             let at = place(
@@ -120,7 +120,10 @@ pub(super) fn fill_schools(
             let lean = Quat::from_rotation_y(std::f32::consts::TAU * rng.unit())
                 * Quat::from_rotation_x(0.45 * rng.unit());
             let rotation = transform.rotation * lean;
-            commands.spawn(member(entity, &spec, at, rotation, size, radius, &mut rng));
+            let number = number as u32;
+            commands.spawn(member(
+                entity, &spec, at, rotation, size, radius, number, &mut rng,
+            ));
         }
     }
 }
