@@ -49,7 +49,8 @@ pub(super) fn reach(species: &Species, scale: f32) -> f32 {
 /// Spawns the members of every school that is new or changed and whose species has
 /// loaded, despawning the members it had. Places are drawn in the box and kept at least
 /// two reaches apart, within the school and from every member of the other schools (the
-/// spacing relaxed by a tenth after each [`TRIES`] failures).
+/// spacing relaxed by a tenth after each [`TRIES`] failures, and kept relaxed for the
+/// school's next members: a box too full for one is too full for the next).
 pub(super) fn fill_schools(
     mut commands: Commands,
     schools: Query<(
@@ -96,6 +97,9 @@ pub(super) fn fill_schools(
         }
         let mut rng = SplitMix::new(spec.seed);
         let scale = spec.scale.max(1e-6);
+        // Once the box is too full for a spacing, it stays so: the next member starts
+        // trying at the spacing the last one needed.
+        let mut spacing = 1.0;
         for number in 0..spec.count {
             let size = scale * (1.0 + spec.size_spread.clamp(0.0, 0.9) * rng.signed());
             let radius = reach(kind, size);
@@ -104,6 +108,7 @@ pub(super) fn fill_schools(
                 spec.half_extents,
                 radius,
                 transform,
+                &mut spacing,
                 |p, spacing| {
                     let mut clear = true;
                     grid.around(p, spacing * (radius + widest), |i| {
@@ -155,26 +160,28 @@ fn cube_for(
 
 /// A world point in the school's box (its centre and orientation the school's; its scale
 /// not used), at least a reach from its walls, where `clear` holds at a spacing factor
-/// (1, relaxed by a tenth after each [`TRIES`] failures).
+/// (from `spacing`, relaxed by a tenth after each [`TRIES`] failures and left where it
+/// succeeded).
 fn place(
     rng: &mut SplitMix,
     half: Vec3,
     radius: f32,
     school: &Transform,
+    spacing: &mut f32,
     clear: impl Fn(Vec3, f32) -> bool,
 ) -> Vec3 {
     let inner = (half - Vec3::splat(radius)).max(0.1 * half.abs());
-    let mut spacing = 1.0;
     loop {
         for _ in 0..TRIES {
             let local = Vec3::new(rng.signed(), rng.signed(), rng.signed()) * inner;
             let at = school.translation + school.rotation * local;
-            if clear(at, spacing) {
+            if clear(at, *spacing) {
                 return at;
             }
         }
-        spacing *= 0.9;
-        if spacing < 1e-3 {
+        *spacing *= 0.9;
+        if *spacing < 1e-3 {
+            *spacing = 1e-3;
             return school.translation;
         }
     }
