@@ -81,6 +81,72 @@ impl Neighbours {
     }
 }
 
+impl Neighbours {
+    /// The `k` nearest of the points `near(i)` accepts, each with the distance it gives
+    /// (at most `most`), into `out` by distance, ties by index: what a pass over all of
+    /// them, sorted, would keep. Cubes are read shell by shell outwards from `p`'s and
+    /// the search stops once no farther cube can hold anything nearer than the `k`-th.
+    pub(super) fn nearest(
+        &self,
+        p: Vec3,
+        most: f32,
+        k: usize,
+        mut near: impl FnMut(usize) -> Option<f32>,
+        out: &mut Vec<(f32, usize)>,
+    ) {
+        out.clear();
+        if k == 0 {
+            return;
+        }
+        let most = if most.is_finite() { most.max(0.0) } else { 0.0 };
+        let mut offer = |out: &mut Vec<(f32, usize)>, i: usize| {
+            if let Some(d) = near(i) {
+                let at = out.partition_point(|&(e, j)| (e, j) < (d, i));
+                if at < k {
+                    out.insert(at, (d, i));
+                    out.truncate(k);
+                }
+            }
+        };
+        let shells = (most / self.cell).ceil().min(1e6) as i32 + 1;
+        let side = 2 * shells as i64 + 1;
+        // Many cubes over few buckets (a sparse school) are cheaper read bucket by bucket.
+        if side * side * side > 4 * self.buckets.len() as i64 {
+            let (lo, hi) = (
+                self.key(p - Vec3::splat(most)),
+                self.key(p + Vec3::splat(most)),
+            );
+            for (key, indices) in &self.buckets {
+                if key.cmpge(lo).all() && key.cmple(hi).all() {
+                    indices.iter().for_each(|i| offer(out, *i));
+                }
+            }
+            return;
+        }
+        let centre = self.key(p);
+        for r in 0..=shells {
+            // The nearest a point in shell r can be is r - 1 cubes away.
+            let gap = (r - 1).max(0) as f32 * self.cell;
+            let full = out.len() == k && out.last().is_some_and(|&(d, _)| gap > d);
+            if full || gap > most {
+                break;
+            }
+            for x in -r..=r {
+                for y in -r..=r {
+                    let rim = x.abs() == r || y.abs() == r;
+                    // Inside the shell's rim only its two faces along z.
+                    let step = if rim { 1 } else { 2 * r as usize };
+                    for z in (-r..=r).step_by(step) {
+                        if let Some(indices) = self.buckets.get(&(centre + IVec3::new(x, y, z))) {
+                            indices.iter().for_each(|i| offer(out, *i));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,6 +183,50 @@ mod tests {
                         .filter(|&i| points[i].0.distance(*p) < range)
                         .collect();
                     assert_eq!(found, all, "cell {cell}, range {range}, at {p}");
+                }
+            }
+        }
+    }
+
+    /// The k nearest within reach, as a pass over all sorted by distance then index would
+    /// keep them: for dense and sparse grids, k below and above the number within reach,
+    /// ties included (points on a lattice).
+    #[test]
+    fn nearest_are_what_a_sorted_pass_over_all_keeps() {
+        let mut points: Vec<(Vec3, f32)> = (0..600)
+            .map(|i| {
+                let f = i as f32;
+                let p = Vec3::new(
+                    (f * 0.37).sin() * 5.0,
+                    (f * 0.71).cos() * 3.0,
+                    (f * 0.13).sin() * 6.0,
+                );
+                (p, 0.0)
+            })
+            .collect();
+        // A lattice: many equal distances.
+        points.extend((0..125).map(|i| {
+            (
+                Vec3::new((i % 5) as f32, ((i / 5) % 5) as f32, (i / 25) as f32) * 0.5,
+                0.0,
+            )
+        }));
+        for cell in [0.25, 0.8, 3.0, 40.0] {
+            let grid = Neighbours::of(&points, cell);
+            for (range, k) in [(0.6, 3), (1.5, 7), (1.5, 1000), (9.0, 7), (0.0, 7)] {
+                for (p, _) in points.iter().step_by(11) {
+                    let near = |i: usize| {
+                        let d = points[i].0.distance(*p);
+                        (d > 1e-6 && d < range).then_some(d)
+                    };
+                    let mut found = Vec::new();
+                    grid.nearest(*p, range, k, near, &mut found);
+                    let mut all: Vec<(f32, usize)> = (0..points.len())
+                        .filter_map(|i| near(i).map(|d| (d, i)))
+                        .collect();
+                    all.sort_by(|a, b| a.partial_cmp(b).unwrap());
+                    all.truncate(k);
+                    assert_eq!(found, all, "cell {cell}, range {range}, k {k}, at {p}");
                 }
             }
         }

@@ -19,6 +19,10 @@ const WALL_REACH: f32 = 3.0;
 const NEIGHBOUR_REACH: f32 = 1.3;
 /// How much more the walls and neighbours count than the wander.
 const PUSH: f32 = 3.0;
+/// A member is pushed by at most this many neighbours, the nearest: a crowd's members
+/// heed the few around them (starlings their six or seven nearest, Ballerini et al. 2008),
+/// and a member of an overfull box does not pay for the hundreds within its reach.
+const NEAREST: usize = 7;
 /// A member decides its heading in one fixed tick of this many.
 pub(super) const STEER_EVERY: u32 = 4;
 
@@ -40,8 +44,8 @@ pub(super) fn steer_schools(
         .collect();
     all.sort_by(super::by_position);
     let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
-    let grid = Neighbours::of(&all, NEIGHBOUR_REACH * widest);
-    let mut near: Vec<(usize, Vec3)> = Vec::new();
+    let grid = Neighbours::of(&all, cube(&all, NEIGHBOUR_REACH * widest));
+    let mut nearest: Vec<(f32, usize)> = Vec::new();
     for (of, swimmer, motion, mut steering) in &mut members {
         if swimmer.number % STEER_EVERY != turn {
             continue;
@@ -58,22 +62,35 @@ pub(super) fn steer_schools(
                 0.6 * (0.09 * t + w.z).cos(),
             );
         let mut push = walls(p, school, frame, swimmer.radius);
-        // Those within reach, summed in the order of `all`: the same sum, to the bit, as a
-        // pass over everyone.
-        near.clear();
+        // The nearest within reach, summed in the order of `all`: the same sum, to the
+        // bit, as a pass over everyone sorted by distance.
         let range = NEIGHBOUR_REACH * (swimmer.radius + widest);
-        grid.around(p, range, |i| {
-            if let Some(away) = pushes(p, swimmer.radius, all[i]) {
-                near.push((i, away));
-            }
-        });
-        near.sort_unstable_by_key(|(i, _)| *i);
-        for (_, away) in &near {
-            push += *away;
+        let within = |i: usize| {
+            let (q, rq) = all[i];
+            let d = p.distance(q);
+            (d > 1e-6 && d < NEIGHBOUR_REACH * (swimmer.radius + rq)).then_some(d)
+        };
+        grid.nearest(p, range, NEAREST, within, &mut nearest);
+        nearest.sort_unstable_by_key(|&(_, i)| i);
+        for &(_, i) in &nearest {
+            push += pushes(p, swimmer.radius, all[i]).unwrap_or_default();
         }
         let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
         steering.target = SteeringTarget::Heading(desired);
     }
+}
+
+/// The grid's cube for `points` whose neighbours reach up to `range`: about eight members
+/// to a cube where they crowd (so a search for the nearest reads a few cubes), never
+/// finer than a quarter of the range nor wider than it.
+fn cube(points: &[(Vec3, f32)], range: f32) -> f32 {
+    let (lo, hi) = points.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), (p, _)| (lo.min(*p), hi.max(*p)),
+    );
+    let volume = (hi - lo).max(Vec3::splat(range)).element_product();
+    let crowded = 2.0 * (volume / points.len().max(1) as f32).cbrt();
+    crowded.clamp(0.25 * range, range.max(1e-6))
 }
 
 /// The push on a member at `p` of `radius` from a neighbour at `q` of `rq`, if it is
