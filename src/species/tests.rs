@@ -137,3 +137,40 @@ fn the_slice_geometry_reads_and_writes_and_a_wrong_one_is_named() {
         "the message names the bad value and the good ones: {msg}"
     );
 }
+
+/// The limits' cost model counts what the advection scheme costs: the dearer schemes
+/// estimate dearer in proportion to the cells, so a species that is cheap only because
+/// the model ignored its scheme is refused as too slow.
+#[test]
+fn the_cost_model_counts_the_advection_scheme() {
+    use super::limits::{MAX_COST_PER_SECOND, simulation_cost};
+    let with = |advection, grid_resolution| {
+        let s = Species {
+            advection,
+            grid_resolution,
+            ..Species::aurelia()
+        };
+        (simulation_cost(&s), s)
+    };
+    for grid in [60, 120] {
+        let (plain, _) = with(Advection::SemiLagrangian, grid);
+        let (maccormack, _) = with(Advection::MacCormack, grid);
+        let (cubic, _) = with(Advection::Cubic, grid);
+        assert!(
+            plain < maccormack && maccormack < cubic,
+            "grid {grid}: {plain} {maccormack} {cubic}"
+        );
+    }
+    // Where the cells are most of the cost, the measured ratios (1.40 and 1.78).
+    let (plain, _) = with(Advection::SemiLagrangian, 192);
+    let (cubic, s) = with(Advection::Cubic, 192);
+    assert!((1.6..1.8).contains(&(cubic / plain)), "{}", cubic / plain);
+    // A grid the plain step affords and Catmull–Rom sampling does not.
+    let grid = (60..=192)
+        .find(|&g| with(Advection::Cubic, g).0 > MAX_COST_PER_SECOND)
+        .map(|g| (g, with(Advection::SemiLagrangian, g).0));
+    if let Some((g, plain)) = grid {
+        assert!(plain <= MAX_COST_PER_SECOND, "grid {g}: {plain}");
+        assert_eq!(s.validate().is_err(), cubic > MAX_COST_PER_SECOND);
+    }
+}
