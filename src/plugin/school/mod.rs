@@ -133,14 +133,12 @@ fn by_position(a: &(Vec3, f32), b: &(Vec3, f32)) -> std::cmp::Ordering {
         .unwrap_or(std::cmp::Ordering::Equal)
 }
 
-/// One member as spawned: a jellyfish of the school's species at `at` (world), upright
-/// with a lean, at `scale`.
+/// One member as spawned: a jellyfish of the school's species placed by `transform`
+/// (world), number `number` in its school.
 fn member(
     school: Entity,
     spec: &JellyfishSchool,
-    at: Vec3,
-    rotation: Quat,
-    scale: f32,
+    transform: Transform,
     radius: f32,
     number: u32,
     rng: &mut place::SplitMix,
@@ -155,9 +153,7 @@ fn member(
             radius,
             number,
         },
-        Steering::heading(rotation * Vec3::Y).with_agility(spec.agility),
-        Transform::from_translation(at)
-            .with_rotation(rotation)
-            .with_scale(Vec3::splat(scale)),
+        Steering::heading(transform.rotation * Vec3::Y).with_agility(spec.agility),
+        transform,
     )
 }

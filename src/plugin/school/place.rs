@@ -125,9 +125,16 @@ pub(super) fn fill_schools(
             let lean = Quat::from_rotation_y(std::f32::consts::TAU * rng.unit())
                 * Quat::from_rotation_x(0.45 * rng.unit());
             let rotation = transform.rotation * lean;
-            let number = number as u32;
+            let placed = Transform::from_translation(at)
+                .with_rotation(rotation)
+                .with_scale(Vec3::splat(size));
             commands.spawn(member(
-                entity, &spec, at, rotation, size, radius, number, &mut rng,
+                entity,
+                &spec,
+                placed,
+                radius,
+                number as u32,
+                &mut rng,
             ));
         }
     }
