@@ -151,21 +151,22 @@ impl Neighbours {
 mod tests {
     use super::*;
 
+    /// `count` points spread through a box of half-extents `half`, deterministically.
+    fn scattered(count: usize, half: Vec3) -> Vec<(Vec3, f32)> {
+        (0..count)
+            .map(|i| {
+                let f = i as f32;
+                let unit = Vec3::new((f * 0.37).sin(), (f * 0.71).cos(), (f * 0.13).sin());
+                (unit * half, 0.0)
+            })
+            .collect()
+    }
+
     /// The grid finds exactly the points a pass over all of them finds, for ranges
     /// smaller and larger than its cubes, and for far and non-finite places.
     #[test]
     fn finds_what_a_pass_over_all_finds() {
-        let mut points: Vec<(Vec3, f32)> = (0..400)
-            .map(|i| {
-                let f = i as f32;
-                let p = Vec3::new(
-                    (f * 0.37).sin() * 9.0,
-                    (f * 0.71).cos() * 4.0,
-                    (f * 0.13).sin() * 12.0,
-                );
-                (p, 0.0)
-            })
-            .collect();
+        let mut points = scattered(400, Vec3::new(9.0, 4.0, 12.0));
         points.push((Vec3::splat(1e12), 0.0));
         points.push((Vec3::new(f32::NAN, 0.0, 0.0), 0.0));
         for cell in [0.3, 1.0, 7.5] {
@@ -193,17 +194,7 @@ mod tests {
     /// ties included (points on a lattice).
     #[test]
     fn nearest_are_what_a_sorted_pass_over_all_keeps() {
-        let mut points: Vec<(Vec3, f32)> = (0..600)
-            .map(|i| {
-                let f = i as f32;
-                let p = Vec3::new(
-                    (f * 0.37).sin() * 5.0,
-                    (f * 0.71).cos() * 3.0,
-                    (f * 0.13).sin() * 6.0,
-                );
-                (p, 0.0)
-            })
-            .collect();
+        let mut points = scattered(600, Vec3::new(5.0, 3.0, 6.0));
         // A lattice: many equal distances.
         points.extend((0..125).map(|i| {
             (
