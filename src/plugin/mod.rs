@@ -78,8 +78,8 @@ pub use lod::{CycleCaches, DetailPlugin};
 pub use render::{
     BellPatterns, GLOW_RADIANCE, JellyfishGeometry, JellyfishGlow, JellyfishMaterialPlugin,
     JellyfishMeshes, JellyfishRenderPlugin, JellyfishTentacles, PatternImages, ShapeBuffers,
-    SpeciesMaterials, SurfaceExtension, SurfaceMaterial, SurfacePath, WorldSurfaces, bell_material,
-    glow_material, tentacle_material,
+    SpeciesMaterials, SurfaceExtension, SurfaceMaterial, SurfacePath, TENTACLE_SORT_OFFSET,
+    WorldSurfaces, bell_material, glow_material, tentacle_material, tentacle_material_at,
 };
 pub use schedule::{JellyfishSchedulePlugin, JellyfishSystems};
 pub use school::{JellyfishSchool, MemberOf, SchoolMembers, SchoolPlugin};

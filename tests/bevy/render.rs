@@ -176,7 +176,9 @@ fn shadow_light(mut commands: Commands) {
 
 /// Template meshes shaped by the vertex shader draw what CPU meshes draw, shadows included:
 /// the same school at the same moment, rendered both ways, differs only where the CPU's
-/// noise (blended between time knots) and the shader's (exact) part by micrometres.
+/// noise (blended between time knots) and the shader's (exact) part by micrometres. Blended
+/// surfaces are drawn in the same order on both paths (a bell and its tentacles once came in
+/// either order, 47 pixels apart), so a handful of pixels is the limit.
 #[test]
 fn templates_draw_what_cpu_meshes_draw() {
     let render = |surfaces: SurfaceMode| {
@@ -255,7 +257,7 @@ fn templates_draw_what_cpu_meshes_draw() {
         "the picture has jellyfish that move: {moved} pixels"
     );
     assert!(
-        mean < 0.05 && differing * 50 < moved,
+        mean < 0.01 && differing * 250 < moved,
         "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved})"
     );
 }

@@ -2,7 +2,8 @@
 //! through the mesoglea) and an additive glow layer carrying the canals and gonads.
 //!
 //! Alpha-blended surfaces are sorted by their meshes' bounding-box centres only, so where
-//! two bells overlap the order of the whole meshes decides which is in front. Added light does not
+//! two bells overlap the order of the whole meshes decides which is in front; a
+//! jellyfish's tentacles sort behind its bell ([`tentacle_material_at`]). Added light does not
 //! depend on the order it is drawn in: the bright part of a jellyfish is additive and
 //! needs no sorting, and the body is faint enough that drawing it in the wrong order
 //! changes a pixel by little (`examples/translucency.rs` measures it). For close-ups,
@@ -21,14 +22,19 @@ use bevy::prelude::*;
 /// tentacles and glow layer, in that order.
 #[derive(Resource)]
 pub struct SpeciesMaterials<M: Material> {
-    /// Per species, its `[bell, tentacles, glow]` materials.
+    /// Per species, its `[bell, tentacles, glow]` materials; the tentacles' for jellyfish
+    /// drawn at scale 1.
     pub by_species: HashMap<AssetId<Species>, [Handle<M>; 3]>,
+    /// The tentacles of jellyfish drawn at other scales, by species and the scale's base-2
+    /// logarithm in eighths: their sort offset ([`TENTACLE_SORT_OFFSET`]) is in world units.
+    pub scaled_tentacles: HashMap<(AssetId<Species>, i32), Handle<M>>,
 }
 
 impl<M: Material> Default for SpeciesMaterials<M> {
     fn default() -> Self {
         Self {
             by_species: HashMap::default(),
+            scaled_tentacles: HashMap::default(),
         }
     }
 }
@@ -37,6 +43,7 @@ impl<M: Material> SpeciesMaterials<M> {
     /// Whether the plugin made this material (rather than the game).
     pub fn is_ours(&self, material: &Handle<M>) -> bool {
         self.by_species.values().any(|m| m.contains(material))
+            || self.scaled_tentacles.values().any(|m| m == material)
     }
 }
 
@@ -100,10 +107,45 @@ pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
     }
 }
 
-/// Tentacles: thin, so denser than the bell to stay visible.
+/// How much farther than its centre a jellyfish's tentacles and oral tubes count when
+/// blended surfaces are sorted, in bell diameters.
+pub const TENTACLE_SORT_OFFSET: f32 = 0.5;
+
+/// Tentacles of a jellyfish drawn at scale 1: thin, so denser than the bell to stay
+/// visible ([`tentacle_material_at`] for other scales).
 pub fn tentacle_material(species: &Species) -> StandardMaterial {
+    tentacle_material_at(species, 1.0)
+}
+
+/// Tentacles of a jellyfish drawn at `scale` (its `GlobalTransform`'s).
+///
+/// Blended surfaces are drawn far to near by their meshes' centres, and a bell and its
+/// tentacles hang on one vertical line, so seen from the side their order was a coin toss,
+/// which the two surface paths tossed differently (their meshes' centres differ). The
+/// manubrium and oral arms lie inside the bell: drawn first, the bell's walls veil them.
+/// So the tentacles sort [`TENTACLE_SORT_OFFSET`] diameters farther than they are (in
+/// world units, hence the scale), and draw after their bell only when the camera looks up
+/// at them from below.
+pub fn tentacle_material_at(species: &Species, scale: f32) -> StandardMaterial {
     let mut m = bell_material(species, None);
     m.base_color
         .set_alpha((species.bell_color[3] * 1.8).min(1.0));
+    // Bevy also hands the bias's integer part to the depth test as a constant bias: a few
+    // of the depth buffer's least steps, nothing a jellyfish shows.
+    m.depth_bias = -TENTACLE_SORT_OFFSET * species.diameter * scale;
     m
+}
+
+/// A jellyfish's scale in steps of 2^(1/8) (9 %): how finely tentacle materials follow it.
+pub(crate) fn scale_step(scale: f32) -> i32 {
+    if scale.is_finite() && scale > 0.0 {
+        (scale.log2() * 8.0).round().clamp(-400.0, 400.0) as i32
+    } else {
+        0
+    }
+}
+
+/// The scale that [`scale_step`] gives `step` for.
+pub(crate) fn step_scale(step: i32) -> f32 {
+    (step as f32 / 8.0).exp2()
 }

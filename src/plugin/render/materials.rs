@@ -7,7 +7,7 @@
 //! own, and is drawn with CPU meshes. Leave [`JellyfishMaterialPlugin`] out to dress every
 //! jellyfish yourself (they are then drawn with CPU meshes).
 
-use super::looks::{SpeciesMaterials, looks};
+use super::looks::{SpeciesMaterials, looks, scale_step, step_scale, tentacle_material_at};
 use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 use super::patterns::BellPatterns;
 use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
@@ -126,9 +126,17 @@ fn update<M: JellyfishLook>(
                         m.restyle(look);
                     }
                 }
+                for ((_, step), handle) in cache.scaled_tentacles.iter().filter(|e| e.0.0 == *id) {
+                    if let Some(mut m) = materials.get_mut(handle) {
+                        m.restyle(tentacle_material_at(s, step_scale(*step)));
+                    }
+                }
             }
             AssetEvent::Removed { id } | AssetEvent::Unused { id } => {
                 cache.by_species.remove(id);
+                cache
+                    .scaled_tentacles
+                    .retain(|(species, _), _| species != id);
             }
             _ => {}
         }
@@ -175,15 +183,37 @@ impl<M: JellyfishLook> Wardrobe<'_, M> {
         self.cache.by_species.insert(handle.id(), made.clone());
         Some(made)
     }
+
+    /// The species' tentacle material for a jellyfish drawn at scale step `step`.
+    fn tentacles(&mut self, handle: &Handle<Species>, step: i32) -> Option<Handle<M>> {
+        let [_, tentacles, _] = self.get(handle)?;
+        if step == 0 {
+            return Some(tentacles);
+        }
+        let key = (handle.id(), step);
+        if let Some(made) = self.cache.scaled_tentacles.get(&key) {
+            return Some(made.clone());
+        }
+        let s = self.species.get(handle)?;
+        let look = tentacle_material_at(s, step_scale(step));
+        let made = self.materials.add(M::dress(look, self.buffers.as_deref())?);
+        self.cache.scaled_tentacles.insert(key, made.clone());
+        Some(made)
+    }
 }
 
 /// Puts our materials on the meshes of the path that wears `M`.
 fn assign<M: JellyfishLook>(
     mut commands: Commands,
     bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<M>>>,
-    tentacles: Query<(Entity, &ChildOf), Undressed<JellyfishTentacles, M>>,
+    tentacles: Query<(Entity, &ChildOf, Option<&MeshMaterial3d<M>>), With<JellyfishTentacles>>,
     glows: Query<(Entity, &ChildOf), Undressed<JellyfishGlow, M>>,
-    parents: Query<(&Jellyfish, &JellyfishMeshes, Option<&MeshMaterial3d<M>>)>,
+    parents: Query<(
+        &Jellyfish,
+        &JellyfishMeshes,
+        Option<&MeshMaterial3d<M>>,
+        &GlobalTransform,
+    )>,
     mut wardrobe: Wardrobe<M>,
 ) {
     let worn = |m: &JellyfishMeshes| m.path == Some(M::PATH);
@@ -195,17 +225,24 @@ fn assign<M: JellyfishLook>(
             commands.entity(entity).insert(MeshMaterial3d(bell));
         }
     }
-    for (entity, child_of) in &tentacles {
-        if let Ok((jelly, meshes, _)) = parents.get(child_of.parent())
+    // Tentacles follow their jellyfish's scale (their sort offset is in world units), so
+    // dressed ones are checked too, unless the game dressed them.
+    for (entity, child_of, worn_now) in &tentacles {
+        if let Ok((jelly, meshes, _, at)) = parents.get(child_of.parent())
             && worn(meshes)
-            && let Some([_, tentacles, _]) = wardrobe.get(&jelly.species)
+            && worn_now.is_none_or(|m| wardrobe.cache.is_ours(&m.0))
+            && let Some(wanted) = wardrobe.tentacles(
+                &jelly.species,
+                scale_step(at.affine().matrix3.y_axis.length()),
+            )
+            && worn_now.is_none_or(|m| m.0 != wanted)
         {
-            commands.entity(entity).insert(MeshMaterial3d(tentacles));
+            commands.entity(entity).insert(MeshMaterial3d(wanted));
         }
     }
     // A bell in a material of the game's own keeps it alone: no glow of ours over it.
     for (entity, child_of) in &glows {
-        if let Ok((jelly, meshes, bell)) = parents.get(child_of.parent())
+        if let Ok((jelly, meshes, bell, _)) = parents.get(child_of.parent())
             && worn(meshes)
             && let Some([ours, .., glow]) = wardrobe.get(&jelly.species)
             && bell.is_none_or(|b| b.0 == ours)

@@ -12,7 +12,10 @@ mod rebuild;
 mod templates;
 
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
-pub use looks::{GLOW_RADIANCE, SpeciesMaterials, bell_material, glow_material, tentacle_material};
+pub use looks::{
+    GLOW_RADIANCE, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material, glow_material,
+    tentacle_material, tentacle_material_at,
+};
 pub use materials::JellyfishMaterialPlugin;
 pub use meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 pub use patterns::{BellPatterns, PatternImages};

@@ -15,7 +15,7 @@ use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     CycleCaches, DetailLevels, JellyfishGeometry, JellyfishGlow, JellyfishMeshes, JellyfishSlice,
-    ShapeBuffers, SurfaceMode, SurfacePath, Tier,
+    ShapeBuffers, SurfaceMode, SurfacePath, TENTACLE_SORT_OFFSET, Tier,
 };
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceGeometry, SliceSim, Species,

@@ -320,3 +320,74 @@ fn geometry_is_the_drawn_surface_in_world_space() {
         .unwrap();
     assert!(none);
 }
+
+/// A jellyfish's tentacles sort half a bell diameter behind it in world units, so their
+/// material follows the jellyfish's scale: shared by jellyfish of one scale, changed when
+/// the scale changes, never put over a material of the game's own.
+#[test]
+fn tentacles_sort_behind_their_bell_at_every_scale() {
+    let mut app = app();
+    app.init_asset::<StandardMaterial>();
+    let s = species();
+    let diameter = s.diameter;
+    let h = add_species(&mut app, s);
+    let at = |scale: f32| Transform::from_xyz(scale, 0.0, 0.0).with_scale(Vec3::splat(scale));
+    let one = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), at(1.0)))
+        .id();
+    let big = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), at(20.0)))
+        .id();
+    let twin = app
+        .world_mut()
+        .spawn((Jellyfish::new(h.clone()), at(20.0)))
+        .id();
+    run(&mut app, 6);
+    let material = |app: &App, e: Entity| {
+        let child = app
+            .world()
+            .get::<JellyfishMeshes>(e)
+            .and_then(|m| m.tentacle_entity)
+            .expect("a tentacle entity");
+        let handle = app
+            .world()
+            .get::<MeshMaterial3d<StandardMaterial>>(child)
+            .expect("the tentacles are dressed")
+            .0
+            .clone();
+        let materials = app.world().resource::<Assets<StandardMaterial>>();
+        let bias = materials
+            .get(&handle)
+            .expect("the material exists")
+            .depth_bias;
+        (handle, bias, child)
+    };
+    let offset = |scale: f32| -TENTACLE_SORT_OFFSET * diameter * scale;
+    let (small, bias, _) = material(&app, one);
+    assert_eq!(bias, offset(1.0));
+    let (large, bias, _) = material(&app, big);
+    assert!(
+        (bias / offset(20.0) - 1.0).abs() < 0.05,
+        "{bias} for {}",
+        offset(20.0)
+    );
+    assert_eq!(material(&app, twin).0, large, "one scale, one material");
+    assert_ne!(small, large);
+
+    app.world_mut().get_mut::<Transform>(one).unwrap().scale = Vec3::splat(20.0);
+    run(&mut app, 2);
+    assert_eq!(material(&app, one).0, large, "it follows a new scale");
+
+    let (_, _, child) = material(&app, twin);
+    let game = app
+        .world_mut()
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial::default());
+    app.world_mut()
+        .entity_mut(child)
+        .insert(MeshMaterial3d(game.clone()));
+    run(&mut app, 2);
+    assert_eq!(material(&app, twin).0, game, "the game's own is kept");
+}
