@@ -122,6 +122,8 @@ pub(crate) struct Swimmer {
     wander: Vec3,
     /// How far its bell and fringe reach, world units.
     radius: f32,
+    /// Its number in the school: which fixed ticks it steers in ([`steer::STEER_EVERY`]).
+    number: u32,
 }
 
 /// Members by place, x then y then z: one order every run, whatever the entities.
@@ -132,12 +134,13 @@ fn by_position(a: &(Vec3, f32), b: &(Vec3, f32)) -> std::cmp::Ordering {
 }
 
 /// One member as spawned: a jellyfish of the school's species placed by `transform`
-/// (world).
+/// (world), number `number` in its school.
 fn member(
     school: Entity,
     spec: &JellyfishSchool,
     transform: Transform,
     radius: f32,
+    number: u32,
     rng: &mut place::SplitMix,
 ) -> impl Bundle {
     (
@@ -148,6 +151,7 @@ fn member(
         Swimmer {
             wander: Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 100.0,
             radius,
+            number,
         },
         Steering::heading(transform.rotation * Vec3::Y).with_agility(spec.agility),
         transform,

@@ -100,7 +100,7 @@ pub(super) fn fill_schools(
         // Once the box is too full for a spacing, it stays so: the next member starts
         // trying at the spacing the last one needed.
         let mut spacing = 1.0;
-        for _ in 0..spec.count {
+        for number in 0..spec.count {
             let size = scale * (1.0 + spec.size_spread.clamp(0.0, 0.9) * rng.signed());
             let radius = reach(kind, size);
             let at = place(
@@ -128,7 +128,14 @@ pub(super) fn fill_schools(
             let placed = Transform::from_translation(at)
                 .with_rotation(rotation)
                 .with_scale(Vec3::splat(size));
-            commands.spawn(member(entity, &spec, placed, radius, &mut rng));
+            commands.spawn(member(
+                entity,
+                &spec,
+                placed,
+                radius,
+                number as u32,
+                &mut rng,
+            ));
         }
     }
 }
