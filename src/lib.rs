@@ -39,10 +39,10 @@ pub mod prelude {
     pub use crate::JellyfishEditorPlugin;
     #[cfg(feature = "bevy")]
     pub use crate::plugin::{
-        AmbientWater, DetailLevels, Jellyfish, JellyfishDiagnostics, JellyfishGeometry,
-        JellyfishPlugin, JellyfishPlugins, JellyfishSettings, JellyfishSlice, JellyfishStarted,
-        JellyfishSystems, Pose, Resting, SliceRecovered, SpeciesRejected, Steering, StrokeStarted,
-        SurfaceMode, SwimMotion, TankWater, Tier,
+        AmbientWater, DetailLevels, Disturbance, Flash, Jellyfish, JellyfishDiagnostics,
+        JellyfishGeometry, JellyfishPlugin, JellyfishPlugins, JellyfishSettings, JellyfishSlice,
+        JellyfishStarted, JellyfishSystems, Pose, Resting, SliceRecovered, SpeciesRejected,
+        Steering, StrokeStarted, SurfaceMode, SwimMotion, TankWater, Tier,
     };
     pub use crate::species::{GonadShape, SliceGeometry, Species, SpeciesError};
 }

@@ -125,6 +125,15 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "glow_color[1]" => s.glow_color[1] = v,
         "glow_color[2]" => s.glow_color[2] = v,
         "glow" => s.glow = v,
+        "flash" => s.flash = v,
+        "flash_decay" => s.flash_decay = v,
+        "flash_refractory" => s.flash_refractory = v,
+        "touch_reach" => s.touch_reach = v,
+        "echo_reach" => s.echo_reach = v,
+        "echo_delay" => s.echo_delay = v,
+        "escape_depth" => s.escape_depth = v,
+        "escape_rhythm" => s.escape_rhythm = v,
+        "escape_strokes" => s.escape_strokes = count(value),
         other => panic!("the fuzzer does not know the field {other}: add it"),
     }
 }

@@ -649,3 +649,85 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
         "stiffer peaks at {f_stiff} Hz, default at {f} Hz"
     );
 }
+
+in_both_geometries!(fn a_startled_slice_escapes_then_eases_back);
+/// A touch makes every shipped species beat deeper and quicker: over the strokes its
+/// escape lasts it takes more strokes and swims further than its untouched twin, then
+/// beats at its own rhythm again; a touch without strength changes nothing, to the bit.
+fn a_startled_slice_escapes_then_eases_back(geometry: SliceGeometry) {
+    for species in shipped(geometry) {
+        let mut calm = SliceSim::new(&species).unwrap();
+        run_cycles(&mut calm, 2.0);
+        let mut startled = calm.clone();
+        let mut untouched = calm.clone();
+        startled.escape(1.0);
+        untouched.escape(0.0);
+        untouched.escape(f32::NAN);
+        assert!(startled.escaping().is_some(), "{}", species.name);
+        assert!(untouched.escaping().is_none());
+        let (d0, c0) = (calm.swim_distance(), calm.cycle());
+        let strokes = species.escape_strokes as f32 + 1.0;
+        for sim in [&mut calm, &mut startled, &mut untouched] {
+            run_cycles(sim, strokes);
+        }
+        let (calm_swim, startled_swim) = (calm.swim_distance() - d0, startled.swim_distance() - d0);
+        println!(
+            "{} ({geometry:?}): over {strokes} strokes' time calm {:.2} D in {} strokes, \
+             startled {:.2} D in {}",
+            species.name,
+            calm_swim / species.diameter,
+            calm.cycle() - c0,
+            startled_swim / species.diameter,
+            startled.cycle() - c0
+        );
+        let per_cycle = calm.clock().steps_per_cycle() as f32;
+        let gained = (startled.clock().stroke_steps() - calm.clock().stroke_steps()) as f32;
+        println!("  {:.2} strokes more", gained / per_cycle);
+        assert!(
+            startled.escaping().is_none(),
+            "{}: eased back",
+            species.name
+        );
+        assert!(gained > 0.25 * per_cycle, "{}: quicker", species.name);
+        assert!(
+            startled_swim > 1.1 * calm_swim,
+            "{}: startled {startled_swim} m against {calm_swim} m",
+            species.name
+        );
+        assert_eq!(
+            state_bits(&untouched),
+            state_bits(&calm),
+            "{}",
+            species.name
+        );
+        // Its own rhythm again: a stroke takes the species' period.
+        let (t, c) = (startled.time(), startled.cycle());
+        run_cycles(&mut startled, 2.0);
+        assert_eq!(startled.cycle() - c, 2, "{} at {t} s", species.name);
+    }
+}
+
+in_both_geometries!(fn an_escape_is_the_same_however_time_is_split);
+fn an_escape_is_the_same_however_time_is_split(geometry: SliceGeometry) {
+    let species = Species {
+        slice_geometry: geometry,
+        ..Species::sarsia()
+    };
+    let run = |dt: f32| {
+        let mut sim = SliceSim::new(&species).unwrap();
+        for k in 0..(3.0 / dt) as usize {
+            sim.advance(dt);
+            if k + 1 == (1.0 / dt) as usize {
+                sim.escape(0.8);
+            }
+        }
+        sim
+    };
+    let (a, b) = (run(1.0 / 32.0), run(1.0 / 128.0));
+    assert!(a.cycle() > 0);
+    assert_eq!(
+        state_bits(&a),
+        state_bits(&b),
+        "1/32 s against 1/128 s frames"
+    );
+}

@@ -3,7 +3,8 @@
 //! `cargo run --release --features examples --example aquarium -- --count 4`
 //! (`-- --help` lists every flag).
 //!
-//! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water.
+//! Left drag orbits, right drag pans, scroll zooms, Shift + left drag stirs the water,
+//! Ctrl + left click touches a jellyfish (it flashes, if its species luminesces, and escapes).
 //! Panels (the `editor` feature, part of `examples`) edit each species live, change the
 //! school size and show the frame rate, jellyfish count and the plugin's simulation and
 //! meshing time; every few seconds the log prints the same numbers.

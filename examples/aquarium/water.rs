@@ -1,11 +1,13 @@
 //! The tank's own water: a coarse grid the jellyfish swim in, pushed by their jets and by
-//! the mouse (Shift + left drag), and a scripted stir for pictures (`--stir`).
+//! the mouse (Shift + left drag), and a scripted stir for pictures (`--stir`). Ctrl + left
+//! click touches the jellyfish under the cursor.
 
 use crate::camera::Orbit;
 use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::input::mouse::AccumulatedMouseMotion;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::TankWater;
+use bevy_jellyfish::Jellyfish;
+use bevy_jellyfish::plugin::{Disturbance, TankWater};
 
 /// The water's cells, scene units: coarse, a fraction of a millisecond a tick.
 const CELL: f32 = 0.75;
@@ -43,7 +45,7 @@ pub fn tank_water() -> TankWater {
 pub fn plugin(app: &mut App) {
     app.insert_resource(tank_water())
         .add_systems(FixedUpdate, scripted_stir)
-        .add_systems(Update, mouse_stir);
+        .add_systems(Update, (mouse_stir, mouse_touch));
 }
 
 fn scripted_stir(
@@ -99,4 +101,40 @@ fn mouse_stir(
     let k = orbit.distance * 0.0015 / time.delta_secs().max(1e-3);
     let velocity = (at.right() * motion.delta.x - at.up() * motion.delta.y) * k;
     tank.stir(point, STIR_RADIUS, velocity.clamp_length_max(8.0));
+}
+
+/// Ctrl + left click touches the jellyfish nearest the cursor's ray, at the ray's point
+/// nearest its centre: it flashes (if its species luminesces) and escapes.
+fn mouse_touch(
+    buttons: Option<Res<ButtonInput<MouseButton>>>,
+    keys: Option<Res<ButtonInput<KeyCode>>>,
+    windows: Query<&Window>,
+    cameras: Query<(&Camera, &GlobalTransform)>,
+    jellyfish: Query<&GlobalTransform, With<Jellyfish>>,
+    mut touches: MessageWriter<Disturbance>,
+) {
+    let (Some(buttons), Some(keys)) = (buttons, keys) else {
+        return;
+    };
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    if !ctrl || !buttons.just_pressed(MouseButton::Left) {
+        return;
+    }
+    let (Ok(window), Ok((camera, at))) = (windows.single(), cameras.single()) else {
+        return;
+    };
+    let Some(ray) = window
+        .cursor_position()
+        .and_then(|cursor| camera.viewport_to_world(at, cursor).ok())
+    else {
+        return;
+    };
+    let nearest_on_ray = |p: Vec3| ray.get_point((p - ray.origin).dot(*ray.direction).max(0.0));
+    let nearest = jellyfish.iter().map(|j| j.translation()).min_by(|a, b| {
+        let d = |p: Vec3| p.distance_squared(nearest_on_ray(p));
+        d(*a).total_cmp(&d(*b))
+    });
+    if let Some(centre) = nearest {
+        touches.write(Disturbance::touch(nearest_on_ray(centre), 1.0));
+    }
 }

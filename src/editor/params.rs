@@ -170,6 +170,20 @@ pub const SECTIONS: &[Section] = &[
         title: "Looks",
         params: &[param!(glow, "glow", "", 1.0, false, Real)],
     },
+    Section {
+        title: "Touch",
+        params: &[
+            param!(flash, "flash", "", 1.0, false, Real),
+            param!(flash_decay, "flash decay", " s", 1.0, false, Real),
+            param!(flash_refractory, "refractory", " s", 1.0, false, Real),
+            param!(touch_reach, "touch reach", " diameters", 1.0, false, Real),
+            param!(echo_reach, "echo reach", " diameters", 1.0, false, Real),
+            param!(echo_delay, "echo delay", " s", 1.0, false, Real),
+            param!(escape_depth, "escape depth", "", 1.0, false, Real),
+            param!(escape_rhythm, "escape rhythm", "×", 1.0, false, Real),
+            param!(escape_strokes, "escape strokes", "", 1.0, false, Count),
+        ],
+    },
 ];
 
 /// Fields edited by a widget other than a slider (see [`species_controls`]).

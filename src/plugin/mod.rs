@@ -29,6 +29,7 @@
 //! | [`InterpolationPlugin`] | the last steps kept, the `Transform` blended between them |
 //! | [`SlicePlugin`] | slices created, edited, stepped; lifecycle events |
 //! | [`TankWaterPlugin`] | a [`TankWater`] stepped and stirred by the jellyfish's jets |
+//! | [`TouchPlugin`] | a [`Disturbance`] makes jellyfish [`Flash`] and escape; echoes |
 //! | [`JellyfishRenderPlugin`] | surfaces rebuilt each frame (CPU meshes or templates), bounds |
 //! | [`JellyfishMaterialPlugin`] | our two-layer material and its patterns |
 //! | [`DetailPlugin`] | levels of detail ([`Tier`]) and the recorded cycles |
@@ -67,6 +68,7 @@ mod species_asset;
 mod swimming;
 mod tank;
 mod timings;
+mod touch;
 mod water;
 
 #[cfg(feature = "debug")]
@@ -92,6 +94,7 @@ pub use swimming::{
     Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin, TentacleGuides,
 };
 pub use tank::{TankWater, TankWaterPlugin};
+pub use touch::{Disturbance, ECHO_SHARE, Flash, TouchPlugin};
 pub use water::{AmbientWater, SampledWater, WaterField, WaterPlugin};
 
 use bevy::app::PluginGroupBuilder;
@@ -118,6 +121,7 @@ impl PluginGroup for JellyfishPlugins {
             .add(InterpolationPlugin)
             .add(SlicePlugin)
             .add(TankWaterPlugin)
+            .add(TouchPlugin)
             .add(JellyfishRenderPlugin)
             .add(JellyfishMaterialPlugin)
             .add(DetailPlugin)

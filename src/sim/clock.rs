@@ -20,6 +20,9 @@ pub struct FixedClock {
     /// Of those, steps taken with the stroke held (resting): the muscle drive's phase
     /// counts only the others, so a rest resumes the stroke where it stopped.
     held: u64,
+    /// Stroke steps counted beyond the steps taken: a hurried rhythm (an escape) moves the
+    /// muscle drive's phase on faster than time.
+    hurried: u64,
 }
 
 /// The most steps one `advance` may take; time beyond it is dropped, so a huge `dt` (a
@@ -36,6 +39,7 @@ impl FixedClock {
             added: 0.0,
             taken: 0,
             held: 0,
+            hurried: 0,
         }
     }
 
@@ -69,9 +73,9 @@ impl FixedClock {
         self.taken
     }
 
-    /// Steps the muscle drive has counted: all but the held ones.
+    /// Steps the muscle drive has counted: all but the held ones, and the hurried ones.
     pub fn stroke_steps(&self) -> u64 {
-        self.taken - self.held
+        self.taken - self.held + self.hurried
     }
 
     /// Phase of the contraction cycle at the state, in `[0, 1)`: exact, in whole steps.
@@ -105,7 +109,11 @@ impl FixedClock {
         let n = c.steps_per_cycle as f64;
         // Held (resting) time carries over as held time of the new step.
         c.held = (self.held as f64 * self.step / c.step).round() as u64;
-        c.taken = c.held + self.cycle() * c.steps_per_cycle as u64 + (phase * n).round() as u64;
+        // So are hurried steps (as hurried ones of the new step).
+        c.hurried = (self.hurried as f64 * self.step / c.step).round() as u64;
+        let stroke = self.cycle() * c.steps_per_cycle as u64 + (phase * n).round() as u64;
+        c.hurried = c.hurried.min(stroke);
+        c.taken = c.held + stroke - c.hurried;
         c.added = c.time() + self.overstep_fraction() as f64 * c.step;
         c
     }
@@ -161,6 +169,11 @@ impl FixedClock {
     pub fn tick_held(&mut self) {
         self.taken += 1;
         self.held += 1;
+    }
+
+    /// Counts one stroke step more without time passing: the phase moves on a step.
+    pub fn hurry(&mut self) {
+        self.hurried += 1;
     }
 }
 

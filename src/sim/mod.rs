@@ -8,6 +8,7 @@ pub(crate) mod body;
 pub mod clock;
 pub(crate) mod coupling;
 pub mod cycle;
+pub mod escape;
 pub(crate) mod fluid;
 pub mod guides;
 pub mod inspect;

@@ -151,6 +151,15 @@ pub const LIMITS: &[Limit] = &[
     limit!("glow_color[1]", 0.0, 16.0, "", "linear green, HDR"),
     limit!("glow_color[2]", 0.0, 16.0, "", "linear blue, HDR"),
     limit!("glow", 0.0, 16.0, "", "brighter saturates bloom"),
+    limit!("flash", 0.0, 64.0, "", "brighter saturates bloom"),
+    limit!("flash_decay", 0.05, 10.0, "s", "quicker is a flicker; slower, a lamp"),
+    limit!("flash_refractory", 0.0, 60.0, "s", "longer, a touched animal hardly ever flashes"),
+    limit!("touch_reach", 0.25, 10.0, "diameters", "nearer misses a touch on the bell's rim; farther, a touch across the tank"),
+    limit!("echo_reach", 0.0, 20.0, "diameters", "farther, one touch lights a whole school"),
+    limit!("echo_delay", 0.02, 5.0, "s", "sooner is one flash; later, not an answer to it"),
+    limit!("escape_depth", 0.0, 1.0, "", "a fraction of the stroke's depth; with the contraction ratio (below)"),
+    limit!("escape_rhythm", 1.0, 3.0, "", "times the pulse rate; quicker, the bell cannot refill"),
+    limit!("escape_strokes", 0.0, 10.0, "", "longer is a new rhythm, not an escape"),
 ];
 
 /// The limit of `field`, if it has one (numeric fields do).
@@ -249,6 +258,15 @@ fn values(s: &Species) -> Vec<(&'static str, f64)> {
         ("glow_color[1]", s.glow_color[1] as f64),
         ("glow_color[2]", s.glow_color[2] as f64),
         ("glow", s.glow as f64),
+        ("flash", s.flash as f64),
+        ("flash_decay", s.flash_decay as f64),
+        ("flash_refractory", s.flash_refractory as f64),
+        ("touch_reach", s.touch_reach as f64),
+        ("echo_reach", s.echo_reach as f64),
+        ("echo_delay", s.echo_delay as f64),
+        ("escape_depth", s.escape_depth as f64),
+        ("escape_rhythm", s.escape_rhythm as f64),
+        ("escape_strokes", s.escape_strokes as f64),
     ]
 }
 
@@ -347,6 +365,17 @@ pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
                 "must be at most {} m (half the diameter and the height), got {} m",
                 0.5 * s.diameter.min(2.0 * s.height),
                 s.thickness
+            ),
+        );
+    }
+    let deepest = 1.0 - (1.0 - s.contraction_ratio) * (1.0 + s.escape_depth);
+    if deepest < 0.1 {
+        return joint(
+            "escape_depth",
+            format!(
+                "an escape would contract the muscle to {deepest} of its length (contraction \
+                 ratio {}, depth {}): at least 0.1 keeps the bell from folding",
+                s.contraction_ratio, s.escape_depth
             ),
         );
     }

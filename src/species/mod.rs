@@ -191,6 +191,29 @@ pub struct Species {
     /// Glow strength: the plain bell's glow layer adds `glow_color × glow × 0.25` of
     /// radiance per surface (before tonemapping), canals and gonads twice that.
     pub glow: f32,
+
+    // --- Touch: the flash and the escape (`docs/physics.md`, "Touch") ---
+    /// Peak strength of a flash when touched, added to `glow` in its units and colour (0:
+    /// the animal does not luminesce).
+    pub flash: f32,
+    /// Time a flash takes to fade to 1/e of its peak, s.
+    pub flash_decay: f32,
+    /// Time after a flash starts before another can, s.
+    pub flash_refractory: f32,
+    /// How far from the bell's centre a touch is felt, in bell diameters.
+    pub touch_reach: f32,
+    /// How far a flash is echoed by neighbours (at most half as bright), in the flasher's
+    /// bell diameters (0: no echo).
+    pub echo_reach: f32,
+    /// How long after a flash its neighbours echo it, s.
+    pub echo_delay: f32,
+    /// How much deeper an escape's strokes contract, as a fraction of the stroke's own
+    /// depth (0: no deeper).
+    pub escape_depth: f32,
+    /// How much quicker an escape's rhythm is: its pulse rate over the species' own.
+    pub escape_rhythm: f32,
+    /// Strokes an escape lasts at its rhythm, the last easing back (0: no escape).
+    pub escape_strokes: u32,
 }
 
 impl Default for Species {

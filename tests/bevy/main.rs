@@ -24,6 +24,7 @@ mod water;
 mod common;
 
 mod editor;
+mod light;
 mod plugin;
 mod render;
 mod shader;

@@ -170,6 +170,7 @@ fn move_to(
             clock,
             swim: 0.0,
             wanted: None,
+            escape: None,
         };
         now.copy_frame(cache.frame(index), replay.clock.time(), 0.0);
         motion.swum = 0.0;

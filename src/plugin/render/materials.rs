@@ -7,12 +7,15 @@
 //! own, and is drawn with CPU meshes. Leave [`JellyfishMaterialPlugin`] out to dress every
 //! jellyfish yourself (they are then drawn with CPU meshes).
 
-use super::looks::{SpeciesMaterials, looks, scale_step, step_scale, tentacle_material_at};
+use super::looks::{
+    SpeciesMaterials, glow_material, looks, scale_step, step_scale, tentacle_material_at,
+};
 use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 use super::patterns::BellPatterns;
 use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::schedule::JellyfishSystems;
+use crate::plugin::touch::Flash;
 use crate::species::Species;
 use bevy::ecs::system::SystemParam;
 use bevy::pbr::{MaterialPlugin, PbrPlugin};
@@ -37,10 +40,18 @@ impl Plugin for JellyfishMaterialPlugin {
                 PostUpdate,
                 (
                     super::patterns::repaint_edited.run_if(resource_exists::<Assets<Image>>),
-                    (update::<StandardMaterial>, assign::<StandardMaterial>)
+                    (
+                        update::<StandardMaterial>,
+                        assign::<StandardMaterial>,
+                        flash::<StandardMaterial>,
+                    )
                         .chain()
                         .run_if(resource_exists::<Assets<StandardMaterial>>),
-                    (update::<SurfaceMaterial>, assign::<SurfaceMaterial>)
+                    (
+                        update::<SurfaceMaterial>,
+                        assign::<SurfaceMaterial>,
+                        flash::<SurfaceMaterial>,
+                    )
                         .chain()
                         .run_if(resource_exists::<Assets<SurfaceMaterial>>),
                 )
@@ -146,6 +157,9 @@ fn update<M: JellyfishLook>(
 /// Entities with `T` that have no `M` yet.
 type Undressed<T, M> = (With<T>, Without<MeshMaterial3d<M>>);
 
+/// Tentacle entities, with the material they wear, if any.
+type Tentacles<M> = (Entity, &'static ChildOf, Option<&'static MeshMaterial3d<M>>);
+
 /// What a species' materials are made from: its parameters, its painted patterns, the
 /// shape buffers (templates) and the asset stores they go into.
 #[derive(SystemParam)]
@@ -206,7 +220,7 @@ impl<M: JellyfishLook> Wardrobe<'_, M> {
 fn assign<M: JellyfishLook>(
     mut commands: Commands,
     bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<M>>>,
-    tentacles: Query<(Entity, &ChildOf, Option<&MeshMaterial3d<M>>), With<JellyfishTentacles>>,
+    tentacles: Query<Tentacles<M>, With<JellyfishTentacles>>,
     glows: Query<(Entity, &ChildOf), Undressed<JellyfishGlow, M>>,
     parents: Query<(
         &Jellyfish,
@@ -248,6 +262,64 @@ fn assign<M: JellyfishLook>(
             && bell.is_none_or(|b| b.0 == ours)
         {
             commands.entity(entity).insert(MeshMaterial3d(glow));
+        }
+    }
+}
+
+/// A flashing jellyfish's glow layer: a material of its own while it flashes.
+#[derive(Component)]
+struct FlashGlow<M: Material>(Handle<M>);
+
+/// While a jellyfish flashes ([`Flash`]), its glow layer wears a material of its own,
+/// its species' glow brightened by the flash; when the flash is over, the species' again.
+/// Few flash at once, so the rest keep sharing one material.
+fn flash<M: JellyfishLook>(
+    mut commands: Commands,
+    jellyfish: Query<(&Jellyfish, &JellyfishMeshes, &Flash), Changed<Flash>>,
+    glows: Query<Option<&FlashGlow<M>>, With<MeshMaterial3d<M>>>,
+    mut wardrobe: Wardrobe<M>,
+) {
+    for (jelly, meshes, flash) in &jellyfish {
+        let Some(glow) = meshes.glow_entity.filter(|_| meshes.path == Some(M::PATH)) else {
+            continue;
+        };
+        // Only a glow layer already dressed in ours (not one the game took over).
+        let Ok(own) = glows.get(glow) else {
+            continue;
+        };
+        let Some(species) = wardrobe.species.get(&jelly.species) else {
+            continue;
+        };
+        if flash.brightness <= 0.0 {
+            if own.is_some()
+                && let Some([.., shared]) = wardrobe.get(&jelly.species)
+            {
+                commands
+                    .entity(glow)
+                    .insert(MeshMaterial3d(shared))
+                    .remove::<FlashGlow<M>>();
+            }
+            continue;
+        }
+        let mut bright = species.clone();
+        bright.glow += flash.brightness;
+        let pattern = wardrobe.patterns.by_species.get(&jelly.species.id());
+        let look = glow_material(&bright, pattern);
+        match own {
+            Some(FlashGlow(handle)) => {
+                if let Some(mut m) = wardrobe.materials.get_mut(handle) {
+                    m.restyle(look);
+                }
+            }
+            None => {
+                let Some(made) = M::dress(look, wardrobe.buffers.as_deref()) else {
+                    continue;
+                };
+                let handle = wardrobe.materials.add(made);
+                commands
+                    .entity(glow)
+                    .insert((MeshMaterial3d(handle.clone()), FlashGlow(handle)));
+            }
         }
     }
 }

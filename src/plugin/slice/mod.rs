@@ -118,6 +118,27 @@ impl JellyfishSlice {
         }
     }
 
+    /// Startles it with a touch of `strength` (0 to 1): live, its slice escapes
+    /// (`SliceSim::escape`: deeper, quicker strokes); far, its replay plays the recorded
+    /// cycle at the escape's quicker rhythm.
+    pub fn escape(&mut self, strength: f32) {
+        if let Some(sim) = self.sim.as_mut() {
+            sim.escape(strength);
+        } else if let Some(replay) = self.replay.as_mut() {
+            replay.escape(strength);
+        }
+    }
+
+    /// Whether it is escaping (a touch quickened its strokes, and they have not eased
+    /// back yet).
+    pub fn escaping(&self) -> bool {
+        match (&self.sim, &self.replay) {
+            (Some(sim), _) => sim.escaping().is_some(),
+            (None, Some(replay)) => replay.escape.is_some(),
+            _ => false,
+        }
+    }
+
     /// Where it is in its stroke, in cycles [0, 1).
     pub fn phase(&self) -> Option<f32> {
         self.clock().map(FixedClock::phase)

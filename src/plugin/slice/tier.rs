@@ -4,6 +4,7 @@
 
 use crate::sim::clock::FixedClock;
 use crate::sim::cycle::{CycleCache, CycleFrame};
+use crate::sim::escape::Escape;
 use crate::species::Species;
 use bevy::prelude::*;
 use std::sync::Arc;
@@ -38,6 +39,9 @@ pub(crate) struct Replay {
     pub swim: f64,
     /// An edited species whose cycle is being recorded: the old cycle plays until then.
     pub wanted: Option<Species>,
+    /// A startle under way: the cycle plays at its quicker rhythm (the recorded stroke
+    /// cannot beat deeper).
+    pub escape: Option<Escape>,
 }
 
 impl Replay {
@@ -54,14 +58,34 @@ impl Replay {
         for _ in 0..self.clock.add_until(added) {
             if resting {
                 self.clock.tick_held();
-            } else {
-                self.clock.tick();
+                after_step(self, cache.frame(self.index()));
+                continue;
             }
-            let frame = cache.frame(self.index());
-            if !resting {
-                self.swim += frame.surge as f64;
+            // A quicker rhythm plays two recorded steps in some fixed steps, and swims both.
+            let species = cache.species();
+            let quick = self.escape.as_mut().map_or(1, |e| e.step(species));
+            if self.escape.as_ref().is_some_and(Escape::done) {
+                self.escape = None;
             }
-            after_step(self, frame);
+            self.clock.tick();
+            self.swim += cache.frame(self.index()).surge as f64;
+            for _ in 1..quick {
+                self.clock.hurry();
+                self.swim += cache.frame(self.index()).surge as f64;
+            }
+            after_step(self, cache.frame(self.index()));
+        }
+    }
+
+    /// Startles it with a touch of `strength` (see `SliceSim::escape`).
+    pub fn escape(&mut self, strength: f32) {
+        let species = self.cache.species();
+        let Some(fresh) = Escape::new(species, self.clock.steps_per_cycle(), strength) else {
+            return;
+        };
+        match &mut self.escape {
+            Some(e) => e.renew(fresh),
+            None => self.escape = Some(fresh),
         }
     }
 

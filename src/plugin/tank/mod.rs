@@ -3,12 +3,15 @@
 //! [`AmbientWater`] every jellyfish swims in.
 //!
 //! The water steps on the app's fixed ticks and takes the jets gathered after the last
-//! tick, summed in entity order, so a replay is the same water.
+//! tick, summed in entity order, so a replay is the same water. The game's own stirs
+//! ([`TankWater::stir`]) also disturb the jellyfish near them ([`Disturbance`]); their
+//! own jets do not.
 
 use super::schedule::JellyfishSystems;
 use super::slice::JellyfishSlice;
 use super::swimming::SwimMotion;
 use super::timings::JellyfishTimings;
+use super::touch::Disturbance;
 use super::water::{AmbientWater, SampledWater};
 use crate::sim::tank::TankFluid;
 use bevy::prelude::*;
@@ -21,6 +24,7 @@ pub struct TankWaterPlugin;
 impl Plugin for TankWaterPlugin {
     fn build(&self, app: &mut App) {
         app.register_type::<TankWater>()
+            .add_message::<Disturbance>()
             .add_systems(
                 FixedUpdate,
                 step_tank
@@ -31,6 +35,12 @@ impl Plugin for TankWaterPlugin {
                 FixedUpdate,
                 collect_jets
                     .in_set(JellyfishSystems::StirWater)
+                    .run_if(resource_exists::<TankWater>),
+            )
+            .add_systems(
+                PostUpdate,
+                disturb
+                    .before(JellyfishSystems::StepSlices)
                     .run_if(resource_exists::<TankWater>),
             );
     }
@@ -46,6 +56,9 @@ pub struct TankWater {
     pub jet_strength: f32,
     #[reflect(ignore)]
     fluid: TankFluid,
+    /// The game's stirs since the last frame, to disturb the jellyfish with.
+    #[reflect(ignore)]
+    stirs: Vec<Disturbance>,
 }
 
 impl std::ops::Deref for TankWater {
@@ -68,7 +81,29 @@ impl TankWater {
         Self {
             jet_strength: 0.5,
             fluid: TankFluid::new(min, max, cell),
+            stirs: Vec::new(),
         }
+    }
+
+    /// Stirs the water: pushes it at `at` within `radius` towards `velocity` (applied at
+    /// the next tick; a non-finite or empty push is ignored), and disturbs the jellyfish
+    /// near it ([`Disturbance`]) as strongly as the stir is quick: fully at
+    /// [`STIR_FOR_A_FULL_TOUCH`] radii a second.
+    pub fn stir(&mut self, at: Vec3, radius: f32, velocity: Vec3) {
+        if !(at.is_finite() && velocity.is_finite() && radius.is_finite() && radius > 0.0) {
+            return;
+        }
+        self.fluid.stir(at, radius, velocity);
+        let strength = (velocity.length() / (STIR_FOR_A_FULL_TOUCH * radius)).min(1.0);
+        // Without the plugin nothing takes them: keep the last few.
+        if self.stirs.len() >= 256 {
+            self.stirs.remove(0);
+        }
+        self.stirs.push(Disturbance {
+            point: at,
+            strength,
+            radius,
+        });
     }
 
     /// The water as a field for the jellyfish.
@@ -121,6 +156,16 @@ fn collect_jets(
     jets.sort_by_key(|j| j.0);
     let strength = tank.jet_strength;
     for (_, at, size, velocity) in jets {
-        tank.stir(at, size, velocity * strength);
+        tank.fluid.stir(at, size, velocity * strength);
+    }
+}
+
+/// How quick a stir is a full-strength touch, in its radii a second.
+pub const STIR_FOR_A_FULL_TOUCH: f32 = 4.0;
+
+/// The game's stirs disturb the jellyfish near them.
+fn disturb(mut tank: ResMut<TankWater>, mut disturbances: MessageWriter<Disturbance>) {
+    if !tank.stirs.is_empty() {
+        disturbances.write_batch(std::mem::take(&mut tank.stirs));
     }
 }

@@ -10,6 +10,7 @@ use super::SliceView;
 use super::body::{Body, Outline, signed_area};
 use super::clock::FixedClock;
 use super::coupling::Coupling;
+use super::escape::Escape;
 use super::fluid::Fluid;
 use super::muscle::MuscleDrive;
 use super::oral_arms::OralArms;
@@ -64,6 +65,8 @@ pub struct SliceSim {
     tentacle_view: [Vec<Vec2>; 2],
     /// Carried by the water, never pushing it.
     oral_arms: OralArms,
+    /// A startle under way: deeper, quicker strokes ([`SliceSim::escape`]).
+    escape: Option<Escape>,
 }
 
 impl SliceSim {
@@ -112,6 +115,7 @@ impl SliceSim {
             rest_bell,
             tentacle_view: [Vec::new(), Vec::new()],
             oral_arms,
+            escape: None,
         };
         sim.refresh_view();
         Ok(sim)
@@ -349,6 +353,27 @@ impl SliceSim {
     /// Whether the stroke is held.
     pub fn resting(&self) -> bool {
         self.resting
+    }
+
+    /// Startles the jellyfish with a touch of `strength` (0 to 1): from its next fixed step
+    /// its muscles beat deeper and quicker for the species' `escape_strokes`, then ease
+    /// back into its rhythm (`escape_depth`, `escape_rhythm`). A touch during an escape
+    /// renews it at the stronger of the two; a species without an escape, or a touch
+    /// without strength (or not finite), does nothing.
+    pub fn escape(&mut self, strength: f32) {
+        let per_cycle = self.clock.steps_per_cycle();
+        let Some(fresh) = Escape::new(&self.species, per_cycle, strength) else {
+            return;
+        };
+        match &mut self.escape {
+            Some(e) => e.renew(fresh),
+            None => self.escape = Some(fresh),
+        }
+    }
+
+    /// The escape under way, if any.
+    pub fn escaping(&self) -> Option<&Escape> {
+        self.escape.as_ref()
     }
 
     /// Moves the clock to `time` seconds without stepping: individuals spawned together

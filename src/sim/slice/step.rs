@@ -32,25 +32,35 @@ impl SliceSim {
         let per_cycle = self.clock.steps_per_cycle() as u64;
         let first = (self.clock.stroke_steps() % per_cycle) * split as u64;
         let n = per_cycle * split as u64;
+        // An escape beats deeper, and quicker: some steps move the phase on by two.
+        let (depth, stroke_steps) = match &mut self.escape {
+            Some(e) if !self.resting => (e.depth(&self.species), e.step(&self.species) as u64),
+            _ => (1.0, 1),
+        };
+        if self.escape.as_ref().is_some_and(|e| e.done()) {
+            self.escape = None;
+        }
         for s in 1..=split as u64 {
             // Resting holds the muscles where the stroke stopped.
             let phase = if self.resting {
                 first as f32 / n as f32
             } else {
-                ((first + s) % n) as f32 / n as f32
+                ((first + s * stroke_steps) % n) as f32 / n as f32
             };
-            self.step(dt / split as f32, phase);
+            self.step(dt / split as f32, phase, depth);
         }
         if self.resting {
             self.clock.tick_held();
         } else {
             self.clock.tick();
+            (1..stroke_steps).for_each(|_| self.clock.hurry());
         }
     }
 
-    /// One coupled step of `dt` seconds, ending at muscle phase `phase`.
-    fn step(&mut self, dt: f32, phase: f32) {
-        self.set_muscles(phase);
+    /// One coupled step of `dt` seconds, ending at muscle phase `phase`, the stroke
+    /// `depth` times its own depth.
+    fn step(&mut self, dt: f32, phase: f32, depth: f32) {
+        self.set_muscles(phase, depth);
         self.substeps += 1;
         self.coupling.locate(&self.fluid, &self.body.points);
         self.coupling.interpolate(&self.fluid, &mut self.velocity);
@@ -125,9 +135,16 @@ impl SliceSim {
         self.follow(dt, moved.y);
     }
 
-    fn set_muscles(&mut self, phase: f32) {
+    fn set_muscles(&mut self, phase: f32, depth: f32) {
         for m in &mut self.body.muscles {
-            m.rest = m.rest_at(self.drive.rest_factor(phase, m.level));
+            let factor = self.drive.rest_factor(phase, m.level);
+            // Exactly the species' stroke outside an escape (1 − (1 − f) rounds).
+            let factor = if depth == 1.0 {
+                factor
+            } else {
+                1.0 - (1.0 - factor) * depth
+            };
+            m.rest = m.rest_at(factor);
         }
     }
 
