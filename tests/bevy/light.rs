@@ -5,8 +5,8 @@
 
 use crate::common::app::Headless;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::{Disturbance, ECHO_SHARE, Flash, JellyfishSlice};
-use bevy_jellyfish::{Jellyfish, Species};
+use bevy_jellyfish::plugin::{DetailLevels, Disturbance, ECHO_SHARE, Flash, JellyfishSlice, Tier};
+use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
 use std::time::Duration;
 
 /// World units per metre: the aquarium's scale.
@@ -216,4 +216,41 @@ fn a_disturbance_that_is_not_finite_is_refused() {
     assert_eq!(flash(&app, e), Flash::default());
     assert!(!slice(&app, e).escaping());
     assert!(slice(&app, e).swim_distance().is_finite());
+}
+
+/// Far from the camera a touched jellyfish replays its recorded stroke at the escape's
+/// quicker rhythm: it flashes, and swims further than its far twin until it eases back.
+#[test]
+fn a_far_jellyfish_escapes_at_the_quicker_rhythm() {
+    let mut app = app(1.0 / 60.0);
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+        near: 0,
+        mid: 0,
+        ..default()
+    };
+    let touched = spawn(&mut app, Vec3::ZERO);
+    let twin = spawn(&mut app, Vec3::X * 100.0 * diameter());
+    run_until(&mut app, 2.0);
+    assert!(
+        [touched, twin]
+            .iter()
+            .all(|&e| slice(&app, e).tier() == Tier::Far)
+    );
+    let before = [touched, twin].map(|e| slice(&app, e).swim_distance());
+    let at = centre(&app, touched);
+    touch(&mut app, Disturbance::touch(at, 1.0));
+    app.update();
+    assert!(slice(&app, touched).escaping());
+    assert!(flash(&app, touched).peak > 0.0);
+    let s = species();
+    run_until(&mut app, 2.0 + 4.0 / s.contraction_frequency as f64);
+    let swum = [touched, twin].map(|e| slice(&app, e).swim_distance());
+    let (escaped, calm) = (swum[0] - before[0], swum[1] - before[1]);
+    println!(
+        "far, over four strokes after the touch: touched {:.3} D, its twin {:.3} D",
+        escaped / s.diameter,
+        calm / s.diameter
+    );
+    assert!(escaped > 1.05 * calm, "touched {escaped} m, twin {calm} m");
+    assert!(!slice(&app, touched).escaping(), "it eased back");
 }
