@@ -93,8 +93,8 @@ pub use species_asset::{SpeciesAssetPlugin, SpeciesLoader, SpeciesRejected};
 pub use swimming::{
     Pose, Resting, Steering, SteeringTarget, SwimMotion, SwimmingPlugin, TentacleGuides,
 };
-pub use tank::{TankWater, TankWaterPlugin};
-pub use touch::{Disturbance, ECHO_SHARE, Flash, TouchPlugin};
+pub use tank::{STIR_FOR_A_FULL_TOUCH, TankWater, TankWaterPlugin};
+pub use touch::{Disturbance, ECHO_SHARE, FLASH_RISE, Flash, TouchPlugin};
 pub use water::{AmbientWater, SampledWater, WaterField, WaterPlugin};
 
 use bevy::app::PluginGroupBuilder;

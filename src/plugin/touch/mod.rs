@@ -11,7 +11,7 @@
 
 mod flash;
 
-pub use flash::Flash;
+pub use flash::{FLASH_RISE, Flash};
 
 use super::jellyfish::Jellyfish;
 use super::schedule::JellyfishSystems;
