@@ -75,6 +75,19 @@ impl Escape {
         1 + extra as u32
     }
 
+    /// The same escape, as far along, for a stroke of `to` fixed steps instead of `from`
+    /// (a jellyfish moved to a level of detail with another step).
+    pub fn retimed(&self, from: u32, to: u32) -> Self {
+        let k = to.max(1) as f32 / from.max(1) as f32;
+        let scale = |n: u32| (n as f32 * k).round() as u32;
+        Self {
+            steps: scale(self.steps),
+            taken: scale(self.taken),
+            easing: scale(self.easing).max(1),
+            ..self.clone()
+        }
+    }
+
     /// A new touch during the escape: the stronger of the two, from the start.
     pub fn renew(&mut self, fresh: Escape) {
         let strength = self.envelope().max(fresh.strength);

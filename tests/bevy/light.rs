@@ -253,4 +253,18 @@ fn a_far_jellyfish_escapes_at_the_quicker_rhythm() {
     );
     assert!(escaped > 1.05 * calm, "touched {escaped} m, twin {calm} m");
     assert!(!slice(&app, touched).escaping(), "it eased back");
+
+    // Touched again and brought near mid-escape, its live slice carries the escape on.
+    let at = centre(&app, touched);
+    touch(&mut app, Disturbance::touch(at, 1.0));
+    app.update();
+    app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels::default();
+    for _ in 0..30 {
+        app.update();
+        if slice(&app, touched).tier() == Tier::Near {
+            break;
+        }
+    }
+    assert_eq!(slice(&app, touched).tier(), Tier::Near);
+    assert!(slice(&app, touched).escaping(), "the escape came along");
 }

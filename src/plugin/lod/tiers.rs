@@ -160,8 +160,16 @@ fn move_to(
         return;
     };
     let species = cache.species();
+    let from = clock.steps_per_cycle();
     let clock = clock.retimed(species.period(), species.steps_per_cycle());
     let index = (clock.stroke_steps() % clock.steps_per_cycle() as u64) as u32;
+    // An escape under way carries on at the new level, as far along.
+    let escape = match (&slice.sim, &slice.replay) {
+        (Some(sim), _) => sim.escaping().cloned(),
+        (None, Some(replay)) => replay.escape.clone(),
+        _ => None,
+    }
+    .map(|e| e.retimed(from, clock.steps_per_cycle()));
     let mut now = Snapshot::default();
     let fade = fade(&clock);
     if tier == Tier::Far {
@@ -170,7 +178,7 @@ fn move_to(
             clock,
             swim: 0.0,
             wanted: None,
-            escape: None,
+            escape,
         };
         now.copy_frame(cache.frame(index), replay.clock.time(), 0.0);
         motion.swum = 0.0;
@@ -180,6 +188,7 @@ fn move_to(
     } else {
         let mut sim = cache.resume(index);
         sim.set_clock(clock);
+        sim.resume_escape(escape);
         now.capture(&sim);
         motion.swum = sim.swim_distance();
         history.change_tier(&now, sim.clock().time(), fade);

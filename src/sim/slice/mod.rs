@@ -376,6 +376,12 @@ impl SliceSim {
         self.escape.as_ref()
     }
 
+    /// Carries on an escape begun elsewhere (the jellyfish's replay at another level of
+    /// detail), counted in this slice's steps.
+    pub fn resume_escape(&mut self, escape: Option<Escape>) {
+        self.escape = escape;
+    }
+
     /// Moves the clock to `time` seconds without stepping: individuals spawned together
     /// then beat out of step (a phase offset) at no cost, and take their steps on
     /// different frames. Meant for a fresh slice; a negative or non-finite `time` does
