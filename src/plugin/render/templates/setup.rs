@@ -29,6 +29,15 @@ struct TemplateMeshes {
 }
 
 impl Templates {
+    /// Makes the meshes for `res` unless they exist; returns whether it made them.
+    fn make(&mut self, res: Resolution, slice: &JellyfishSlice, meshes: &mut Assets<Mesh>) -> bool {
+        if self.by_resolution.contains_key(&res) {
+            return false;
+        }
+        self.get(res, slice, meshes);
+        true
+    }
+
     /// The meshes for `res`, made the first time from the species' rest shape (the
     /// shader ignores the template's positions and normals; they make a sensible rest
     /// mesh for tools that read it).
@@ -111,6 +120,11 @@ pub(crate) fn set_up(
         }
         let res = settings.resolution(&slice.species);
         if meshes.written == Some(res) {
+            continue;
+        }
+        // A template made this frame is drawn from the next: an entity given a mesh the
+        // renderer has not prepared yet was drawn by the first of several cameras only.
+        if templates.make(res, slice, &mut assets) {
             continue;
         }
         meshes.written = Some(res);
