@@ -136,7 +136,7 @@ impl Species {
             // Its photocytes ring the margin and flash green when it is touched (Davenport
             // & Nicol 1955; aequorin's blue handed to GFP, Shimomura et al. 1962); how
             // bright, how long and how often are chosen to read, not measured.
-            flash: 2.0,
+            flash: 4.0,
             flash_decay: 0.8,
             flash_refractory: 2.0,
             echo_reach: 4.0,

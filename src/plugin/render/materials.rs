@@ -7,15 +7,12 @@
 //! own, and is drawn with CPU meshes. Leave [`JellyfishMaterialPlugin`] out to dress every
 //! jellyfish yourself (they are then drawn with CPU meshes).
 
-use super::looks::{
-    SpeciesMaterials, glow_material, looks, scale_step, step_scale, tentacle_material_at,
-};
+use super::looks::{SpeciesMaterials, looks, scale_step, step_scale, tentacle_material_at};
 use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 use super::patterns::BellPatterns;
 use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::schedule::JellyfishSystems;
-use crate::plugin::touch::Flash;
 use crate::species::Species;
 use bevy::ecs::system::SystemParam;
 use bevy::pbr::{MaterialPlugin, PbrPlugin};
@@ -43,14 +40,14 @@ impl Plugin for JellyfishMaterialPlugin {
                     (
                         update::<StandardMaterial>,
                         assign::<StandardMaterial>,
-                        flash::<StandardMaterial>,
+                        super::flash::flash::<StandardMaterial>,
                     )
                         .chain()
                         .run_if(resource_exists::<Assets<StandardMaterial>>),
                     (
                         update::<SurfaceMaterial>,
                         assign::<SurfaceMaterial>,
-                        flash::<SurfaceMaterial>,
+                        super::flash::flash::<SurfaceMaterial>,
                     )
                         .chain()
                         .run_if(resource_exists::<Assets<SurfaceMaterial>>),
@@ -163,18 +160,18 @@ type Tentacles<M> = (Entity, &'static ChildOf, Option<&'static MeshMaterial3d<M>
 /// What a species' materials are made from: its parameters, its painted patterns, the
 /// shape buffers (templates) and the asset stores they go into.
 #[derive(SystemParam)]
-struct Wardrobe<'w, M: JellyfishLook> {
-    species: Res<'w, Assets<Species>>,
+pub(super) struct Wardrobe<'w, M: JellyfishLook> {
+    pub(super) species: Res<'w, Assets<Species>>,
     cache: ResMut<'w, SpeciesMaterials<M>>,
-    materials: ResMut<'w, Assets<M>>,
+    pub(super) materials: ResMut<'w, Assets<M>>,
     patterns: ResMut<'w, BellPatterns>,
-    images: Option<ResMut<'w, Assets<Image>>>,
-    buffers: Option<Res<'w, ShapeBuffers>>,
+    pub(super) images: Option<ResMut<'w, Assets<Image>>>,
+    pub(super) buffers: Option<Res<'w, ShapeBuffers>>,
 }
 
 impl<M: JellyfishLook> Wardrobe<'_, M> {
     /// The species' `[bell, tentacles, glow]` materials, made the first time.
-    fn get(&mut self, handle: &Handle<Species>) -> Option<[Handle<M>; 3]> {
+    pub(super) fn get(&mut self, handle: &Handle<Species>) -> Option<[Handle<M>; 3]> {
         let s = self.species.get(handle)?;
         if let Some(made) = self.cache.by_species.get(&handle.id()) {
             return Some(made.clone());
@@ -262,64 +259,6 @@ fn assign<M: JellyfishLook>(
             && bell.is_none_or(|b| b.0 == ours)
         {
             commands.entity(entity).insert(MeshMaterial3d(glow));
-        }
-    }
-}
-
-/// A flashing jellyfish's glow layer: a material of its own while it flashes.
-#[derive(Component)]
-struct FlashGlow<M: Material>(Handle<M>);
-
-/// While a jellyfish flashes ([`Flash`]), its glow layer wears a material of its own,
-/// its species' glow brightened by the flash; when the flash is over, the species' again.
-/// Few flash at once, so the rest keep sharing one material.
-fn flash<M: JellyfishLook>(
-    mut commands: Commands,
-    jellyfish: Query<(&Jellyfish, &JellyfishMeshes, &Flash), Changed<Flash>>,
-    glows: Query<Option<&FlashGlow<M>>, With<MeshMaterial3d<M>>>,
-    mut wardrobe: Wardrobe<M>,
-) {
-    for (jelly, meshes, flash) in &jellyfish {
-        let Some(glow) = meshes.glow_entity.filter(|_| meshes.path == Some(M::PATH)) else {
-            continue;
-        };
-        // Only a glow layer already dressed in ours (not one the game took over).
-        let Ok(own) = glows.get(glow) else {
-            continue;
-        };
-        let Some(species) = wardrobe.species.get(&jelly.species) else {
-            continue;
-        };
-        if flash.brightness <= 0.0 {
-            if own.is_some()
-                && let Some([.., shared]) = wardrobe.get(&jelly.species)
-            {
-                commands
-                    .entity(glow)
-                    .insert(MeshMaterial3d(shared))
-                    .remove::<FlashGlow<M>>();
-            }
-            continue;
-        }
-        let mut bright = species.clone();
-        bright.glow += flash.brightness;
-        let pattern = wardrobe.patterns.by_species.get(&jelly.species.id());
-        let look = glow_material(&bright, pattern);
-        match own {
-            Some(FlashGlow(handle)) => {
-                if let Some(mut m) = wardrobe.materials.get_mut(handle) {
-                    m.restyle(look);
-                }
-            }
-            None => {
-                let Some(made) = M::dress(look, wardrobe.buffers.as_deref()) else {
-                    continue;
-                };
-                let handle = wardrobe.materials.add(made);
-                commands
-                    .entity(glow)
-                    .insert((MeshMaterial3d(handle.clone()), FlashGlow(handle)));
-            }
         }
     }
 }

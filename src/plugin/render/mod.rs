@@ -3,6 +3,7 @@
 //! culled from the slice, and dressed in our two-layer material.
 
 mod culling;
+mod flash;
 mod geometry;
 mod looks;
 mod materials;
@@ -11,6 +12,7 @@ mod patterns;
 mod rebuild;
 mod templates;
 
+pub use flash::FLASH_SPREAD;
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use looks::{
     GLOW_RADIANCE, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material, glow_material,
