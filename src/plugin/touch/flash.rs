@@ -1,7 +1,7 @@
 //! A jellyfish's flash: bioluminescence after a touch, rising in a tenth of a second and
 //! fading over the species' `flash_decay`, with a refractory time before the next.
 
-use super::Touched;
+use crate::plugin::slice::JellyfishSlice;
 use crate::species::Species;
 use bevy::prelude::*;
 
@@ -63,9 +63,9 @@ impl Flash {
 }
 
 /// Every flash's brightness at the frame's time; a faded one goes dark (exactly 0).
-pub(super) fn fade(mut jellyfish: Query<Touched>, time: Res<Time<Virtual>>) {
+pub(super) fn fade(mut jellyfish: Query<(&JellyfishSlice, &mut Flash)>, time: Res<Time<Virtual>>) {
     let now = time.elapsed_secs_f64();
-    for (_, slice, mut flash, _) in &mut jellyfish {
+    for (slice, mut flash) in &mut jellyfish {
         let Some(started) = flash.started else {
             continue;
         };

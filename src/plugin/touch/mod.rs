@@ -114,16 +114,16 @@ fn feel_disturbances(
         }
         let mut felt: Vec<(Entity, f32)> = Vec::new();
         for (entity, mut slice, mut flash, at) in &mut jellyfish {
-            let Some(species) = slice.species().cloned() else {
+            let Some(reach) = slice.species().map(|s| s.touch_reach * s.diameter) else {
                 continue;
             };
-            let (centre, scale) = (at.translation(), world_scale(at));
-            let strength = d.felt_at(centre, species.touch_reach * species.diameter * scale);
+            let strength = d.felt_at(at.translation(), reach * world_scale(at));
             if strength <= 0.0 {
                 continue;
             }
             slice.escape(strength);
-            if flash.start(&species, now, strength, d.point, at) {
+            let species = &slice.species;
+            if flash.start(species, now, strength, d.point, at) {
                 felt.push((entity, species.flash * strength));
             }
         }
