@@ -7,16 +7,14 @@
 use super::looks::{GLOW_RADIANCE, glow_material};
 use super::materials::{JellyfishLook, Wardrobe};
 use super::meshes::JellyfishMeshes;
-use super::patterns::PLAIN_GLOW;
+use super::patterns::{PLAIN_GLOW, bell_image, glow_grey};
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::touch::Flash;
 use crate::shape::pattern;
 use crate::species::Species;
 use bevy::asset::RenderAssetUsages;
-use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
-use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
 use std::f32::consts::{PI, TAU};
 
 /// The flash image's size: half the glow pattern's each way.
@@ -49,7 +47,7 @@ impl GlowGreys {
                 .map(|i| {
                     let (row, col) = (2 * (i / WIDTH), 2 * (i % WIDTH));
                     let m = &texels[row * pattern::WIDTH + col];
-                    PLAIN_GLOW + 0.3 * m.canal + 0.5 * m.gonad
+                    glow_grey(m)
                 })
                 .collect()
         })
@@ -128,7 +126,8 @@ pub(super) fn flash<M: JellyfishLook>(
                 }
             }
             None => {
-                let image = images.add(new_image(data));
+                let usage = RenderAssetUsages::RENDER_WORLD | RenderAssetUsages::MAIN_WORLD;
+                let image = images.add(bell_image((WIDTH, HEIGHT), data, usage));
                 let look = StandardMaterial {
                     base_color_texture: Some(image.clone()),
                     ..look
@@ -172,24 +171,6 @@ fn flash_look(species: &Species, most: f32) -> StandardMaterial {
         base_color: radiance.into(),
         ..glow_material(species, None)
     }
-}
-
-fn new_image(data: Vec<u8>) -> Image {
-    let mut image = Image::new(
-        Extent3d {
-            width: WIDTH as u32,
-            height: HEIGHT as u32,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        data,
-        TextureFormat::Rgba8Unorm,
-        RenderAssetUsages::RENDER_WORLD | RenderAssetUsages::MAIN_WORLD,
-    );
-    let mut sampler = ImageSamplerDescriptor::linear();
-    sampler.address_mode_u = ImageAddressMode::Repeat;
-    image.sampler = ImageSampler::Descriptor(sampler);
-    image
 }
 
 #[cfg(test)]

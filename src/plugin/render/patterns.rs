@@ -106,25 +106,37 @@ pub(crate) fn pattern_images(species: &Species) -> [Image; 2] {
     for m in &texels {
         let c = bell.lerp(canal, m.canal).lerp(gonad, m.gonad);
         color.extend(c.to_array().map(byte));
-        let g = byte(PLAIN_GLOW + 0.3 * m.canal + 0.5 * m.gonad);
+        let g = byte(glow_grey(m));
         glow.extend([g, g, g, 255]);
     }
-    [color, glow].map(|data| {
-        let mut image = Image::new(
-            Extent3d {
-                width: WIDTH as u32,
-                height: HEIGHT as u32,
-                depth_or_array_layers: 1,
-            },
-            TextureDimension::D2,
-            data,
-            TextureFormat::Rgba8Unorm,
-            RenderAssetUsages::RENDER_WORLD,
-        );
-        // Around the bell the pattern wraps; from apex to apex it does not.
-        let mut sampler = ImageSamplerDescriptor::linear();
-        sampler.address_mode_u = ImageAddressMode::Repeat;
-        image.sampler = ImageSampler::Descriptor(sampler);
-        image
-    })
+    [color, glow].map(|data| bell_image((WIDTH, HEIGHT), data, RenderAssetUsages::RENDER_WORLD))
+}
+
+/// How much of the species' glow a texel with these marks emits (the glow image's grey).
+pub(super) fn glow_grey(m: &pattern::Marks) -> f32 {
+    PLAIN_GLOW + 0.3 * m.canal + 0.5 * m.gonad
+}
+
+/// An RGBA8 image over the bell's UVs, `(width, height)` texels of `data`.
+pub(super) fn bell_image(
+    (width, height): (usize, usize),
+    data: Vec<u8>,
+    usage: RenderAssetUsages,
+) -> Image {
+    let mut image = Image::new(
+        Extent3d {
+            width: width as u32,
+            height: height as u32,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::Rgba8Unorm,
+        usage,
+    );
+    // Around the bell the pattern wraps; from apex to apex it does not.
+    let mut sampler = ImageSamplerDescriptor::linear();
+    sampler.address_mode_u = ImageAddressMode::Repeat;
+    image.sampler = ImageSampler::Descriptor(sampler);
+    image
 }
