@@ -125,6 +125,7 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "glow_color[1]" => s.glow_color[1] = v,
         "glow_color[2]" => s.glow_color[2] = v,
         "glow" => s.glow = v,
+        "glow_band" => s.glow_band = v,
         "flash" => s.flash = v,
         "flash_decay" => s.flash_decay = v,
         "flash_refractory" => s.flash_refractory = v,

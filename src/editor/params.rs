@@ -168,7 +168,10 @@ pub const SECTIONS: &[Section] = &[
     },
     Section {
         title: "Looks",
-        params: &[param!(glow, "glow", "", 1.0, false, Real)],
+        params: &[
+            param!(glow, "glow", "", 1.0, false, Real),
+            param!(glow_band, "glow band", "", 1.0, false, Real),
+        ],
     },
     Section {
         title: "Touch",

@@ -10,6 +10,10 @@ pub struct SurfaceBuffers {
     pub normals: Vec<[f32; 3]>,
     /// Texture coordinates: u around the axis, v from apex (or root) to margin (or tip).
     pub uvs: Vec<[f32; 2]>,
+    /// What the tissue material reads ([`tissue`](super::tissue)): the tissue's thickness
+    /// here relative to its reference (the mesoglea at the apex; a tube at its root), and
+    /// the glow band's share.
+    pub tissue: Vec<[f32; 2]>,
     /// Triangles, three indices each.
     pub indices: Vec<u32>,
 }
@@ -34,6 +38,8 @@ impl SurfaceBuffers {
         self.normals.resize(vertices, [0.0, 1.0, 0.0]);
         self.uvs.clear();
         self.uvs.resize(vertices, [0.0; 2]);
+        self.tissue.clear();
+        self.tissue.resize(vertices, [1.0, 0.0]);
         self.indices.clear();
     }
 

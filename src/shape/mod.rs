@@ -9,6 +9,7 @@
 //!   closed surfaces in [`buffers`];
 //!   the umbrella's normals come from its ring grid (`normals.rs`).
 //! - [`pattern`]: the canals and gonads painted on the subumbrella.
+//! - [`tissue`]: each vertex's thickness and glow band, for the translucent material.
 //! - [`variation`]: structural, compression and unstructured variation (Fig. 9); the noise
 //!   is cached per vertex in [`noise_field`].
 //! - [`input`]: what a slice must satisfy; [`outline`]: a hand-made slice for tests,
@@ -28,6 +29,7 @@ pub mod perlin;
 pub mod profile;
 pub mod spline;
 pub mod tentacles;
+pub mod tissue;
 pub mod umbrella;
 pub mod variation;
 

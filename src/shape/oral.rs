@@ -13,6 +13,7 @@ use super::buffers::SurfaceBuffers;
 use super::discs::Disc;
 use super::spline::catmull_rom;
 use super::tentacles::{TentacleLayout, across, along, linear, tangent};
+use super::tissue::relative_thickness;
 use crate::sim::guides::{GUIDE_NODES, Trail};
 use crate::sim::oral_arms::stalk_fraction;
 use crate::species::Species;
@@ -79,11 +80,29 @@ impl OralStyle {
         (half, 0.3 * half)
     }
 
-    /// How far the blade's edge at `e = cos φ` is pushed across it at fraction `f`.
+    /// How far the blade's edge at `e = cos φ` is pushed across it at fraction `f`: curled
+    /// to one side by [`ARM_CURL`] and ruffled in waves along the arm, both by the frill.
     pub fn ruffle(&self, arm: usize, f: f32, half_width: f32, e: f32) -> f32 {
-        self.frill * 2.0 * half_width * e * e * (TAU * self.waves * f + 1.7 * arm as f32).sin()
+        let waves = 2.0 * (TAU * self.waves * f + 1.7 * arm as f32).sin();
+        self.frill * half_width * e * e * (ARM_CURL + waves)
+    }
+
+    /// The tube's thickness at fraction `f` relative to its reference (the manubrium's
+    /// radius; an arm's blade at full width), which the tissue material's opacity is
+    /// painted for.
+    pub fn thickness(&self, manubrium: bool, f: f32) -> f32 {
+        let reference = match manubrium {
+            true => self.manubrium_radius,
+            false => 0.15 * self.arm_width,
+        };
+        relative_thickness(self.section(manubrium, f).1, reference)
     }
 }
+
+/// How far an arm's blade curls: its edges fold to one side by this share of its
+/// half-width per unit of frill, so a blade's section is a shallow C, as the oral arms of
+/// *Aurelia* fold along their length.
+pub const ARM_CURL: f32 = 0.8;
 
 /// `3x² − 2x³` of `x / edge`, clamped: 0 at 0, 1 from `edge` on.
 fn smoothstep(edge: f32, x: f32) -> f32 {
@@ -273,6 +292,7 @@ pub(crate) fn write_surface(
                 let v = first + l.ring(t, m, i);
                 buf.positions[v] = p.to_array();
                 buf.normals[v] = normal.to_array();
+                buf.tissue[v] = [style.thickness(manubrium, f), 0.0];
             }
         }
         let last = l.points - 1;
@@ -282,5 +302,7 @@ pub(crate) fn write_surface(
         buf.normals[first + l.root(t)] = (-root).to_array();
         buf.positions[first + l.tip(t)] = (s.centre[last] + thin(1.0) * tip).to_array();
         buf.normals[first + l.tip(t)] = tip.to_array();
+        buf.tissue[first + l.root(t)] = [style.thickness(manubrium, 0.0), 0.0];
+        buf.tissue[first + l.tip(t)] = [style.thickness(manubrium, 1.0), 0.0];
     }
 }

@@ -26,6 +26,7 @@ use super::oral::{self, ORAL_SIDES, OralStyle};
 use super::perlin::perlin4;
 use super::profile::Profile;
 use super::tentacles::{self, SIDEWAYS, TentacleLayout};
+use super::tissue;
 use super::variation::{Variation, apex_fade, tentacle_reach};
 use crate::sim::SliceView;
 use crate::sim::guides::{GUIDE_NODES, Trail};
@@ -330,6 +331,32 @@ fn column(j: usize, segments: usize) -> ((f32, f32), f32) {
     ((c, s), sigma)
 }
 
+/// A template vertex as the shader builds it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertex {
+    /// Position, metres in the jellyfish's frame.
+    pub position: Vec3,
+    /// Unit normal, outward.
+    pub normal: Vec3,
+    /// What the tissue material reads ([`tissue`](super::tissue)).
+    pub tissue: Vec2,
+}
+
+/// Ring `k`'s tissue: its thickness relative to the apex's, and its glow band.
+fn ring_tissue(b: Block, k: usize) -> Vec2 {
+    let thickness = |k| {
+        let at = b.ring(k);
+        tissue::ring_thickness(
+            &b.disc(at + RING_SUBUMBRELLA),
+            &b.disc(at + RING_EXUMBRELLA),
+        )
+    };
+    Vec2::new(
+        tissue::relative_thickness(thickness(k), thickness(0)),
+        tissue::band(b.0[b.ring(k) + RING_CONTRACTION]),
+    )
+}
+
 /// Ring `k` of surface `surface` (0 exumbrella, 1 subumbrella), column `j`: position and
 /// the analytic (swept mesoglea) normal, outward.
 fn umbrella_point(b: Block, surface: usize, k: usize, j: usize) -> (Vec3, Vec3) {
@@ -368,14 +395,20 @@ fn sheet(l: isize, rings: usize) -> (usize, usize) {
     }
 }
 
-/// Position and normal of umbrella vertex `index` of the template (the layout of
-/// `umbrella::write_topology`), as the vertex shader computes them.
-pub fn umbrella_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+/// Umbrella vertex `index` of the template (the layout of `umbrella::write_topology`), as
+/// the vertex shader computes it.
+pub fn umbrella_vertex(b: Block, index: usize) -> Vertex {
     let (rings, segments) = (b.rings(), b.segments());
     let surface_len = 1 + rings * (segments + 1);
     let (surface, r) = (index / surface_len, index % surface_len);
     if r == 0 {
-        return umbrella_point(b, surface, 0, 0);
+        let (position, normal) = umbrella_point(b, surface, 0, 0);
+        let tissue = ring_tissue(b, 0);
+        return Vertex {
+            position,
+            normal,
+            tissue,
+        };
     }
     let (k, j) = (1 + (r - 1) / (segments + 1), (r - 1) % (segments + 1));
     let (position, analytic) = umbrella_point(b, surface, k, j);
@@ -392,7 +425,11 @@ pub fn umbrella_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let around = at(l, j + 1) - at(l, j + segments - 1);
     let along = at(l + 1, j) - at(l - 1, j);
     let normal = around.cross(along).try_normalize().unwrap_or(analytic);
-    (position, normal)
+    Vertex {
+        position,
+        normal,
+        tissue: ring_tissue(b, k),
+    }
 }
 
 /// Centre of tentacle `t`'s ring `m`, as `tentacles::write_surface` places it.
@@ -486,10 +523,10 @@ fn tube_index(layout: &TentacleLayout, index: usize) -> TubeIndex {
     TubeIndex { tube, ring, part }
 }
 
-/// Position and normal of vertex `index` of the hanging parts' template (the layout of
+/// Vertex `index` of the hanging parts' template (the layout of
 /// `tentacles::write_topology`: the tentacles, then the oral tubes), as the vertex shader
-/// computes them.
-pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+/// computes it.
+pub fn tentacle_vertex(b: Block, index: usize) -> Vertex {
     let layout = TentacleLayout {
         count: b.count(H_TENTACLES),
         sides: b.count(H_SIDES),
@@ -509,10 +546,16 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let tangent = (tentacle_centre(b, t, (m + 1).min(last))
         - tentacle_centre(b, t, m.saturating_sub(1)))
     .normalize_or(Vec3::NEG_Y);
-    let radius = b.0[H_TENTACLE_RADIUS];
+    let thin = tissue::taper(m as f32 / last as f32);
+    let radius = b.0[H_TENTACLE_RADIUS] * thin;
+    let solid = |position, normal| Vertex {
+        position,
+        normal,
+        tissue: Vec2::new(thin, 0.0),
+    };
     let i = match part {
-        TubePart::Start => return (centre - radius * tangent, -tangent),
-        TubePart::End => return (centre + radius * tangent, tangent),
+        TubePart::Start => return solid(centre - radius * tangent, -tangent),
+        TubePart::End => return solid(centre + radius * tangent, tangent),
         TubePart::Side(i) => i,
     };
     let sigma = TAU * t as f32 / layout.count as f32;
@@ -521,7 +564,7 @@ pub fn tentacle_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let n = tentacles::across(outward, tangent);
     let (sin_phi, cos_phi) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
     let out = cos_phi * n + sin_phi * tangent.cross(n);
-    (centre + radius * out, out)
+    solid(centre + radius * out, out)
 }
 
 /// Centre of oral tube `t`'s ring `m`, as `oral::centre` places it.
@@ -544,9 +587,9 @@ fn oral_centre(b: Block, layout: &TentacleLayout, style: &OralStyle, t: usize, m
     p + (q - p) * w + trail
 }
 
-/// Position and normal of oral tube vertex `index` (counted from the first oral vertex),
-/// as `oral::write_surface` places it.
-fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
+/// Oral tube vertex `index` (counted from the first oral vertex), as
+/// `oral::write_surface` places it.
+fn oral_vertex(b: Block, index: usize) -> Vertex {
     let layout = TentacleLayout {
         count: b.count(H_ORAL),
         sides: ORAL_SIDES,
@@ -571,9 +614,17 @@ fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let tangent =
         (centre((m + 1).min(last)) - centre(m.saturating_sub(1))).normalize_or(Vec3::NEG_Y);
     let manubrium = style.is_manubrium(t);
+    let f = oral::fraction(&layout, m);
+    let solid = |(position, normal)| Vertex {
+        position,
+        normal,
+        tissue: Vec2::new(style.thickness(manubrium, f), 0.0),
+    };
     let i = match part {
-        TubePart::Start => return (c - style.section(manubrium, 0.0).1 * tangent, -tangent),
-        TubePart::End => return (c + style.section(manubrium, 1.0).1 * tangent, tangent),
+        TubePart::Start => {
+            return solid((c - style.section(manubrium, 0.0).1 * tangent, -tangent));
+        }
+        TubePart::End => return solid((c + style.section(manubrium, 1.0).1 * tangent, tangent)),
         TubePart::Side(i) => i,
     };
     let (arm, sigma) = if manubrium {
@@ -584,8 +635,16 @@ fn oral_vertex(b: Block, index: usize) -> (Vec3, Vec3) {
     let (sin, cos) = sigma.sin_cos();
     let n = tentacles::across(b.disc(H_APERTURE).direction((cos, sin)), tangent);
     let (o, e) = (TAU * (i % layout.sides) as f32 / layout.sides as f32).sin_cos();
-    let f = oral::fraction(&layout, m);
-    oral::section_vertex(&style, manubrium, arm, f, c, tangent, n, (e, o))
+    solid(oral::section_vertex(
+        &style,
+        manubrium,
+        arm,
+        f,
+        c,
+        tangent,
+        n,
+        (e, o),
+    ))
 }
 
 #[cfg(test)]

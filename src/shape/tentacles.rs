@@ -11,6 +11,7 @@ use super::buffers::SurfaceBuffers;
 use super::discs::{Disc, angles};
 use super::profile::RingPair;
 use super::spline::catmull_rom;
+use super::tissue::taper;
 use super::variation::Variation;
 use crate::sim::guides::Trail;
 use glam::{Vec2, Vec3};
@@ -240,22 +241,28 @@ pub(crate) fn write_surface(
             let tm = s.tangent[m];
             let n = across(outward, tm);
             let b = tm.cross(n);
+            let thin = taper(fraction(l, m));
             for (i, &(cp, sp)) in s.around.iter().enumerate() {
                 let out = cp * n + sp * b;
                 let v = l.ring(t, m, i);
-                buf.positions[v] = (s.centre[m] + radius * out).to_array();
+                buf.positions[v] = (s.centre[m] + radius * thin * out).to_array();
                 buf.normals[v] = out.to_array();
+                buf.tissue[v] = [thin, 0.0];
             }
             let (first, seam) = (l.ring(t, m, 0), l.ring(t, m, l.sides));
             buf.positions[seam] = buf.positions[first];
             buf.normals[seam] = buf.normals[first];
+            buf.tissue[seam] = buf.tissue[first];
         }
         let last = l.points - 1;
         let (root, tip) = (s.tangent[0], s.tangent[last]);
+        let tip_radius = radius * taper(1.0);
         buf.positions[l.root(t)] = (s.centre[0] - radius * root).to_array();
         buf.normals[l.root(t)] = (-root).to_array();
-        buf.positions[l.tip(t)] = (s.centre[last] + radius * tip).to_array();
+        buf.tissue[l.root(t)] = [1.0, 0.0];
+        buf.positions[l.tip(t)] = (s.centre[last] + tip_radius * tip).to_array();
         buf.normals[l.tip(t)] = tip.to_array();
+        buf.tissue[l.tip(t)] = [taper(1.0), 0.0];
     }
 }
 

@@ -9,6 +9,7 @@ use super::buffers::SurfaceBuffers;
 use super::discs::Disc;
 use super::normals::grid_normals;
 use super::profile::Profile;
+use super::tissue::{band, relative_thickness, ring_thickness};
 use super::variation::{Variation, apex_fade};
 use glam::{Vec2, Vec3};
 
@@ -113,10 +114,20 @@ pub(crate) fn write_surface(
     let (rings, segments) = (profile.pairs.len() - 1, angles.len());
     let v = |surface, k, j| vertex(rings, segments, surface, k, j);
     let mut radial = Vec2::X;
+    let mut apex = 0.0;
     for (k, pair) in profile.pairs.iter().enumerate() {
         let sub = Disc::through(pair.subumbrella[0], pair.subumbrella[1], radial);
         let ex = Disc::through(pair.exumbrella[0], pair.exumbrella[1], sub.radial);
         radial = sub.radial;
+        let thickness = ring_thickness(&sub, &ex);
+        if k == 0 {
+            apex = thickness;
+        }
+        let tissue = [relative_thickness(thickness, apex), band(pair.contraction)];
+        for surface in 0..2 {
+            let ring = v(surface, k, 0)..=v(surface, k, if k == 0 { 0 } else { segments });
+            buf.tissue[ring].fill(tissue);
+        }
         if k == 0 {
             let n = sub.normal(pair.normal, (1.0, 0.0));
             set(buf, v(0, 0, 0), ex.centre, n);

@@ -191,6 +191,9 @@ pub struct Species {
     /// Glow strength: the plain bell's glow layer adds `glow_color × glow × 0.25` of
     /// radiance per surface (before tonemapping), canals and gonads twice that.
     pub glow: f32,
+    /// Strength of the glow band that runs along the bell with the contraction, in the
+    /// units and colour of `glow`, where a ring is half-way through closing (0: none).
+    pub glow_band: f32,
 
     // --- Touch: the flash and the escape (`docs/physics.md`, "Touch") ---
     /// Peak strength of a flash when touched, added to `glow` in its units and colour (0:

@@ -80,6 +80,8 @@ impl Species {
             bell_color: [0.75, 0.85, 1.0, 0.35],
             glow_color: [0.35, 0.55, 1.0],
             glow: 0.6,
+            // The band is a look, not biology: no medusa is known to glow with its stroke.
+            glow_band: 0.8,
             // Scyphozoans like the moon jelly do not luminesce (Haddock, Moline & Case
             // 2010); touched, it only quickens its strokes for a couple of cycles.
             flash: 0.0,
@@ -133,6 +135,7 @@ impl Species {
             bell_color: [0.8, 0.95, 0.9, 0.25],
             glow_color: [0.3, 1.0, 0.45],
             glow: 0.5,
+            glow_band: 0.5,
             // Its photocytes ring the margin and flash green when it is touched (Davenport
             // & Nicol 1955; aequorin's blue handed to GFP, Shimomura et al. 1962); how
             // bright, how long and how often are chosen to read, not measured.
@@ -180,6 +183,7 @@ impl Species {
             bell_color: [0.95, 0.8, 0.85, 0.3],
             glow_color: [1.0, 0.35, 0.5],
             glow: 0.5,
+            glow_band: 0.5,
             // A jetter: touched, it beats much deeper and quicker for a few strokes.
             escape_depth: 0.4,
             escape_rhythm: 1.3,

@@ -3,12 +3,15 @@
 //! from the same table (`#import bevy_jellyfish::packed`), so the shader holds no copy.
 //!
 //! The table also names the constants of other modules that the shader's arithmetic
-//! shares with the CPU mesh (`ORAL_SIDES`, `SIDEWAYS`, `APEX_FADE`) and `TAU`.
+//! shares with the CPU mesh (`ORAL_SIDES`, `SIDEWAYS`, `APEX_FADE`, `TENTACLE_TIP`,
+//! `ARM_CURL`) and `TAU`.
 
 // The WGSL writer's one caller is the plugin.
 #![cfg_attr(not(feature = "bevy"), allow(dead_code))]
 
+use crate::shape::oral::ARM_CURL;
 use crate::shape::tentacles::SIDEWAYS;
+use crate::shape::tissue::TENTACLE_TIP;
 use crate::shape::variation::APEX_FADE;
 use crate::sim::guides::GUIDE_NODES;
 
@@ -131,6 +134,9 @@ layout! {
         H_ORAL_GUIDES = 34;
         /// Header length.
         HEADER = 35;
+        /// The `MeshTag` of a CPU mesh wearing the template material: the vertex shader
+        /// draws its vertices as they are (no slot is this large).
+        CPU_MESH_TAG = u32::MAX as usize;
         /// Values per guide of the trail: the offsets (x, y, z) of its nodes after the
         /// root (which never moves), as halves (IEEE binary16: 24 µm at 5 cm), two to a
         /// value, the first in its low bits.
@@ -162,6 +168,10 @@ layout! {
         /// Latitude below which structural and compression variation fade in
         /// (`shape::variation`).
         APEX_FADE: Real;
+        /// A tentacle's tip radius over its root's (`shape::tissue`).
+        TENTACLE_TIP: Real;
+        /// How far an oral arm's blade curls, per unit of frill (`shape::oral`).
+        ARM_CURL: Real;
         /// A turn, rad.
         TAU: Real;
     }

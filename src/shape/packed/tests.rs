@@ -3,7 +3,7 @@ use crate::shape::{JellyMesh, SliceOutline};
 
 /// The shader's arithmetic (mirrored here) rebuilds every vertex of the CPU mesh: the
 /// same positions to a micrometre (the CPU blends its noise between time knots, the
-/// shader evaluates it at the time itself) and the same normals.
+/// shader evaluates it at the time itself), the same normals and the same tissue.
 #[test]
 fn packed_block_rebuilds_the_cpu_mesh() {
     for (species, seed, time) in [
@@ -57,23 +57,26 @@ fn packed_block_rebuilds_the_cpu_mesh() {
                 ),
                 ("tentacles", &mesh.tentacles, tentacle_vertex),
             ] {
-                let mut worst = (0.0f32, 1.0f32);
+                let mut worst = (0.0f32, 1.0f32, 0.0f32);
                 for i in 0..buffers.vertex_count() {
-                    let (p, n) = vertex(b, i);
-                    let (cpu_p, cpu_n) = (
+                    let gpu = vertex(b, i);
+                    let (cpu_p, cpu_n, cpu_t) = (
                         Vec3::from_array(buffers.positions[i]),
                         Vec3::from_array(buffers.normals[i]),
+                        Vec2::from_array(buffers.tissue[i]),
                     );
-                    worst.0 = worst.0.max(p.distance(cpu_p));
-                    worst.1 = worst.1.min(n.dot(cpu_n));
+                    worst.0 = worst.0.max(gpu.position.distance(cpu_p));
+                    worst.1 = worst.1.min(gpu.normal.dot(cpu_n));
+                    worst.2 = worst.2.max((gpu.tissue - cpu_t).abs().max_element());
                 }
                 assert!(
-                    worst.0 < tolerance && worst.1 > 0.999,
+                    worst.0 < tolerance && worst.1 > 0.999 && worst.2 < 1e-4,
                     "{name} of {} at {time} s: worst position error {:.2e} m, worst \
-                     normal cosine {}",
+                     normal cosine {}, worst tissue error {:.2e}",
                     species.name,
                     worst.0,
-                    worst.1
+                    worst.1,
+                    worst.2
                 );
             }
         }
@@ -121,7 +124,7 @@ fn oral_guides_move_their_tubes() {
             shift.distance(expected) < 0.25 * thick,
             "tube {t}: tip moved {shift} against {expected}"
         );
-        let gpu = tentacle_vertex(Block(&swept_block), v).0;
+        let gpu = tentacle_vertex(Block(&swept_block), v).position;
         let cpu = Vec3::from_array(swept.tentacles.positions[v]);
         assert!(
             gpu.distance(cpu) < 1e-5,
@@ -172,7 +175,7 @@ fn a_block_leaves_out_trails_that_move_nothing() {
         let worst = (0..mesh.tentacles.vertex_count())
             .map(|i| {
                 let cpu = Vec3::from_array(mesh.tentacles.positions[i]);
-                tentacle_vertex(b, i).0.distance(cpu)
+                tentacle_vertex(b, i).position.distance(cpu)
             })
             .fold(0.0f32, f32::max);
         assert!(
