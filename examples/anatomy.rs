@@ -4,7 +4,8 @@
 //! painted on the subumbrella, the tentacles.
 //!
 //! `cargo run --release --features examples --example anatomy -- --screenshot anatomy.png
-//! [--frames 150] [--size 1500x1000]`. Offscreen, without a window (Mesa's software Vulkan
+//! [--frames 150] [--size 1500x1000] [--cpu]` (`--cpu`: CPU meshes instead of templates,
+//! to compare the two paths). Offscreen, without a window (Mesa's software Vulkan
 //! will do; set `XDG_RUNTIME_DIR` to quiet it). Columns: Aurelia, Aequorea, Sarsia.
 
 #[path = "common/offscreen.rs"]
@@ -34,8 +35,16 @@ fn main() {
             h.parse().expect("--size height"),
         )
     });
+    let surfaces = match args.iter().any(|a| a == "--cpu") {
+        true => SurfaceMode::CpuMeshes,
+        false => SurfaceMode::Auto,
+    };
     let mut offscreen = Offscreen::new(width, height, |app| {
         app.add_plugins(JellyfishPlugin::default())
+            .insert_resource(JellyfishSettings {
+                surfaces,
+                ..default()
+            })
             .add_systems(Update, follow);
     })
     .unwrap_or_else(|e| {

@@ -17,7 +17,8 @@ use bevy::mesh::MeshTag;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode, SurfacePath,
+    CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode,
+    SurfacePath,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
 use std::path::{Path, PathBuf};
@@ -278,10 +279,12 @@ fn glow_layers_follow_their_umbrellas(world: &mut World, path: SurfacePath) {
             "the glow layer draws the umbrella's mesh"
         );
         assert_eq!(glow_tag, tag, "and the umbrella's shape slot");
-        let alpha_mode = match path {
-            SurfacePath::CpuMeshes => material::<StandardMaterial>(world, glow).alpha_mode,
-            SurfacePath::Templates => material::<SurfaceMaterial>(world, glow).base.alpha_mode,
-        };
+        // Both paths wear the template material where the device binds it; a CPU mesh's
+        // tag tells its vertex shader to draw the mesh's own vertices.
+        if path == SurfacePath::CpuMeshes {
+            assert_eq!(tag.map(|t| t.0), Some(CPU_MESH_TAG), "a CPU mesh's tag");
+        }
+        let alpha_mode = material::<SurfaceMaterial>(world, glow).base.alpha_mode;
         assert_eq!(alpha_mode, AlphaMode::Add, "the glow layer adds its light");
         checked += 1;
     }

@@ -1,8 +1,9 @@
-//! The template surfaces' vertex shader, composed as Bevy composes it and validated by
-//! naga, with no GPU: an app with the render plugins but no wgpu backend loads Bevy's
-//! shader libraries, the plugin adds `bevy_jellyfish::packed`, and `surface.wgsl` is
-//! composed through naga_oil with them for each pipeline it serves (forward, prepass,
-//! shadows, deferred), with the shader defs Bevy gives our material there, then validated.
+//! The template surfaces' vertex shader and the tissue layer's fragment shader, composed
+//! as Bevy composes them and validated by naga, with no GPU: an app with the render
+//! plugins but no wgpu backend loads Bevy's shader libraries, the plugin adds
+//! `bevy_jellyfish::packed`, and `surface.wgsl` is composed through naga_oil with them
+//! for each pipeline it serves (forward, prepass, shadows, deferred), `tissue.wgsl` for
+//! the main passes, with the shader defs Bevy gives our materials there, then validated.
 
 use bevy::asset::LoadState;
 use bevy::log::LogPlugin;
@@ -21,10 +22,11 @@ use std::collections::{HashMap, HashSet};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-/// `surface.wgsl` and every shader it may import, directly or not, by import path: what
-/// an app that renders has in `Assets<Shader>`.
+/// `surface.wgsl`, `tissue.wgsl` and every shader they may import, directly or not, by
+/// import path: what an app that renders has in `Assets<Shader>`.
 struct Shaders {
     surface: Shader,
+    tissue: Shader,
     by_import: HashMap<ShaderImport, Shader>,
 }
 
@@ -71,23 +73,31 @@ impl Shaders {
                 "the prepass and deferred vertex stages use the same file"
             );
         }
-        let handle: Handle<Shader> = app.world().resource::<AssetServer>().load(path);
+        let ShaderRef::Path(tissue) = SurfaceExtension::fragment_shader() else {
+            panic!("the tissue layer's fragment shader is a file");
+        };
+        let server = app.world().resource::<AssetServer>();
+        let handle: Handle<Shader> = server.load(path);
+        let tissue: Handle<Shader> = server.load(tissue);
         let deadline = Instant::now() + Duration::from_secs(120);
         loop {
             app.update();
             let world = app.world();
-            if let Some(LoadState::Failed(error)) =
-                world.resource::<AssetServer>().get_load_state(&handle)
-            {
-                panic!("surface.wgsl did not load: {error}");
+            for (name, h) in [("surface.wgsl", &handle), ("tissue.wgsl", &tissue)] {
+                if let Some(LoadState::Failed(error)) =
+                    world.resource::<AssetServer>().get_load_state(h)
+                {
+                    panic!("{name} did not load: {error}");
+                }
             }
             let assets = world.resource::<Assets<Shader>>();
             let by_import: HashMap<_, _> = assets
                 .iter()
                 .map(|(_, s)| (s.import_path.clone(), s.clone()))
                 .collect();
-            if let Some(surface) = assets.get(&handle) {
-                let missing = missing_imports(surface, &by_import);
+            if let (Some(surface), Some(tissue)) = (assets.get(&handle), assets.get(&tissue)) {
+                let mut missing = missing_imports(surface, &by_import);
+                missing.extend(missing_imports(tissue, &by_import));
                 if missing.is_empty() {
                     // `PipelineCache::extract_shaders`: the global defs on every shader.
                     let global = |s: &Shader| {
@@ -97,6 +107,7 @@ impl Shaders {
                     };
                     return Self {
                         surface: global(surface),
+                        tissue: global(tissue),
                         by_import: by_import
                             .iter()
                             .map(|(k, s)| (k.clone(), global(s)))
@@ -108,30 +119,30 @@ impl Shaders {
                     "shader imports never loaded: {missing:?}"
                 );
             }
-            assert!(Instant::now() < deadline, "surface.wgsl never loaded");
+            assert!(Instant::now() < deadline, "the shaders never loaded");
             std::thread::sleep(Duration::from_millis(5));
         }
     }
 
-    /// Composes `surface.wgsl` with `defs` as Bevy's `ShaderCache` does (its imports
-    /// added to a naga_oil `Composer` depth first, then the shader made into a naga
-    /// module), and validates the module with naga. The error, readable, if either fails.
-    fn compose(&self, defs: &[Def]) -> Result<naga::Module, String> {
+    /// Composes `shader` with `defs` as Bevy's `ShaderCache` does (its imports added to a
+    /// naga_oil `Composer` depth first, then the shader made into a naga module), and
+    /// validates the module with naga. The error, readable, if either fails.
+    fn compose(&self, shader: &Shader, defs: &[Def]) -> Result<naga::Module, String> {
         // Bevy's debug-build composer: naga_oil's, validating.
         let mut composer = Composer::default();
-        for import in &self.surface.imports {
+        for import in &shader.imports {
             self.add(&mut composer, import)?;
         }
         // `ShaderCache::get`: the pipeline's defs, then the shader's own.
         let shader_defs = defs
             .iter()
             .map(|d| d.naga_oil())
-            .chain(self.surface.shader_defs.iter().map(naga_oil_def))
+            .chain(shader.shader_defs.iter().map(naga_oil_def))
             .collect();
         let module = composer
             .make_naga_module(NagaModuleDescriptor {
                 shader_defs,
-                ..(&self.surface).into()
+                ..shader.into()
             })
             .map_err(|e| e.emit_to_string(&composer))?;
         Validator::new(ValidationFlags::all(), composer.capabilities)
@@ -140,24 +151,26 @@ impl Shaders {
         Ok(module)
     }
 
-    /// Composes and validates for every pipeline the file serves: the failures, by
-    /// pipeline.
+    /// Composes and validates `surface.wgsl` for every pipeline it serves: the failures,
+    /// by pipeline.
     fn check(&self) -> Vec<String> {
-        let mut failures = Vec::new();
-        for (name, defs) in pipelines() {
-            match self.compose(&defs) {
-                Ok(module) => {
-                    let vertex = |e: &naga::EntryPoint| {
-                        e.name == "vertex" && e.stage == naga::ShaderStage::Vertex
-                    };
-                    if !module.entry_points.iter().any(vertex) {
-                        failures.push(format!("{name}: no vertex entry point `vertex`"));
-                    }
-                }
-                Err(error) => failures.push(format!("{name}:\n{error}")),
-            }
-        }
-        failures
+        check(
+            &self.surface,
+            pipelines(),
+            naga::ShaderStage::Vertex,
+            |s, d| self.compose(s, d),
+        )
+    }
+
+    /// Composes and validates `tissue.wgsl` for every main pass it serves: the failures,
+    /// by pipeline.
+    fn check_tissue(&self) -> Vec<String> {
+        check(
+            &self.tissue,
+            main_passes(),
+            naga::ShaderStage::Fragment,
+            |s, d| self.compose(s, d),
+        )
     }
 
     /// These shaders with `surface.wgsl`'s source, or the module `import`'s, edited.
@@ -172,6 +185,7 @@ impl Shaders {
         };
         let mut edited = Self {
             surface: self.surface.clone(),
+            tissue: self.tissue.clone(),
             by_import: self.by_import.clone(),
         };
         match import {
@@ -201,6 +215,33 @@ impl Shaders {
             .map(|_| ())
             .map_err(|e| e.emit_to_string(composer))
     }
+}
+
+/// Composes `shader` for each pipeline and checks it has the entry point of `stage` (named
+/// `vertex` or `fragment`): the failures, by pipeline.
+fn check(
+    shader: &Shader,
+    pipelines: Vec<(&'static str, Vec<Def>)>,
+    stage: naga::ShaderStage,
+    compose: impl Fn(&Shader, &[Def]) -> Result<naga::Module, String>,
+) -> Vec<String> {
+    let entry = match stage {
+        naga::ShaderStage::Vertex => "vertex",
+        _ => "fragment",
+    };
+    let mut failures = Vec::new();
+    for (name, defs) in pipelines {
+        match compose(shader, &defs) {
+            Ok(module) => {
+                let found = |e: &naga::EntryPoint| e.name == entry && e.stage == stage;
+                if !module.entry_points.iter().any(found) {
+                    failures.push(format!("{name}: no {stage:?} entry point `{entry}`"));
+                }
+            }
+            Err(error) => failures.push(format!("{name}:\n{error}")),
+        }
+    }
+    failures
 }
 
 /// The imports of `shader` (with theirs) that no shader in `by_import` defines.
@@ -267,7 +308,8 @@ fn global_defs() -> Vec<ShaderDefVal> {
 
 /// The defs Bevy 0.19 gave our material's main pass in the aquarium on llvmpipe, as the
 /// shader cache logged them (`RUST_LOG=bevy_shader=debug`, the render test): a template
-/// mesh (positions, normals, UVs), opaque, in a multisampled perspective view.
+/// mesh (positions, normals, UVs; since the tissue layer, a second UV channel), opaque, in
+/// a multisampled perspective view.
 const FORWARD: &[Def] = &[
     On("MESH_PIPELINE"),
     On("VERTEX_OUTPUT_INSTANCE_INDEX"),
@@ -275,6 +317,7 @@ const FORWARD: &[Def] = &[
     On("VERTEX_NORMALS"),
     On("VERTEX_UVS"),
     On("VERTEX_UVS_A"),
+    On("VERTEX_UVS_B"),
     On("MULTISAMPLED"),
     On("VIEW_PROJECTION_PERSPECTIVE"),
     On("SHADOW_FILTER_METHOD_GAUSSIAN"),
@@ -295,6 +338,7 @@ const SHADOW: &[Def] = &[
     On("VERTEX_POSITIONS"),
     On("VERTEX_UVS"),
     On("VERTEX_UVS_A"),
+    On("VERTEX_UVS_B"),
 ];
 
 /// Every pipeline the file serves, by name, with its defs: those logged above, and what
@@ -328,7 +372,11 @@ fn pipelines() -> Vec<(&'static str, Vec<Def>)> {
         ),
         (
             "forward, no UVs",
-            without(FORWARD, &["VERTEX_UVS", "VERTEX_UVS_A"]),
+            without(FORWARD, &["VERTEX_UVS", "VERTEX_UVS_A", "VERTEX_UVS_B"]),
+        ),
+        (
+            "forward, no tissue channel",
+            without(FORWARD, &["VERTEX_UVS_B"]),
         ),
         ("directional shadow", SHADOW.to_vec()),
         (
@@ -370,6 +418,27 @@ fn pipelines() -> Vec<(&'static str, Vec<Def>)> {
                 ],
             ),
         ),
+    ]
+}
+
+/// The main passes the tissue layer's fragment shader serves: a mesh with our tissue in
+/// its second UV channel, opaque or blended (premultiplied, as `AlphaMode::Blend` and
+/// `Add` are), with order-independent transparency, and without the channel.
+fn main_passes() -> Vec<(&'static str, Vec<Def>)> {
+    let with = |more: &[Def]| [FORWARD, more].concat();
+    let untextured: Vec<Def> = FORWARD
+        .iter()
+        .copied()
+        .filter(|d| d.name() != "VERTEX_UVS_B")
+        .collect();
+    vec![
+        ("forward", FORWARD.to_vec()),
+        (
+            "forward, blended",
+            with(&[On("PREMULTIPLY_ALPHA"), On("BLEND_PREMULTIPLIED_ALPHA")]),
+        ),
+        ("forward, order-independent", with(&[On("OIT_ENABLED")])),
+        ("forward, no tissue channel", untextured),
     ]
 }
 
@@ -445,4 +514,29 @@ fn the_surface_shader_copies_no_constant() {
     let packed = ShaderImport::Custom("bevy_jellyfish::packed".into());
     assert!(shaders.surface.imports.contains(&packed));
     assert!(shaders.by_import.contains_key(&packed));
+}
+
+/// `tissue.wgsl` composes and validates for every main pass it serves; a type error in it
+/// fails every one.
+#[test]
+fn the_tissue_shader_composes_and_validates_without_a_gpu() {
+    let shaders = Shaders::get();
+    let failures = shaders.check_tissue();
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    let source = shaders.tissue.source.as_str();
+    let edited = source.replacen("let band = in.uv_b.y;", "let band: u32 = in.uv_b.y;", 1);
+    assert_ne!(edited, source, "the edit changes the source");
+    let broken = Shaders {
+        surface: shaders.surface.clone(),
+        tissue: Shader {
+            shader_defs: shaders.tissue.shader_defs.clone(),
+            ..Shader::from_wgsl(edited, shaders.tissue.path.clone())
+        },
+        by_import: shaders.by_import.clone(),
+    };
+    assert_eq!(
+        broken.check_tissue().len(),
+        main_passes().len() - 1,
+        "a type error read where the tissue channel is"
+    );
 }

@@ -4,7 +4,7 @@
 //! *Aequorea*'s photocytes are). Both surface paths share the umbrella's UVs, so they
 //! draw the same flash. Few flash at once; the rest keep sharing their species' material.
 
-use super::looks::{GLOW_RADIANCE, glow_material};
+use super::looks::{GLOW_RADIANCE, Look, glow_material, glow_tissue};
 use super::materials::{JellyfishLook, Wardrobe};
 use super::meshes::JellyfishMeshes;
 use super::patterns::{PLAIN_GLOW, bell_image, glow_grey};
@@ -84,7 +84,8 @@ pub(super) fn flash<M: JellyfishLook>(
     }
     let now = time.elapsed_secs_f64();
     for (jelly, meshes, flash) in &jellyfish {
-        let Some(glow) = meshes.glow_entity.filter(|_| meshes.path == Some(M::PATH)) else {
+        let worn = M::wears(meshes.path, wardrobe.buffers.is_some());
+        let Some(glow) = meshes.glow_entity.filter(|_| worn) else {
             continue;
         };
         // Only a glow layer already dressed in ours (not one the game took over).
@@ -112,26 +113,19 @@ pub(super) fn flash<M: JellyfishLook>(
         let age = flash.started.map_or(0.0, |t| (now - t) as f32);
         let touched = flash.origin.z.atan2(flash.origin.x);
         let (data, most) = flash_image(grey, species.glow, flash.brightness, age, touched);
-        let look = flash_look(&species, most);
         match own {
             Some(own) => {
                 if let Some(mut image) = images.get_mut(&own.image) {
                     image.data = Some(data);
                 }
                 if let Some(mut m) = wardrobe.materials.get_mut(&own.material) {
-                    m.restyle(StandardMaterial {
-                        base_color_texture: Some(own.image.clone()),
-                        ..look
-                    });
+                    m.restyle(flash_look(&species, most, own.image.clone()));
                 }
             }
             None => {
                 let usage = RenderAssetUsages::RENDER_WORLD | RenderAssetUsages::MAIN_WORLD;
                 let image = images.add(bell_image((WIDTH, HEIGHT), data, usage));
-                let look = StandardMaterial {
-                    base_color_texture: Some(image.clone()),
-                    ..look
-                };
+                let look = flash_look(&species, most, image.clone());
                 let Some(made) = M::dress(look, wardrobe.buffers.as_deref()) else {
                     continue;
                 };
@@ -163,13 +157,17 @@ fn flash_image(grey: &[f32], glow: f32, brightness: f32, age: f32, touched: f32)
     (data, most)
 }
 
-/// The glow layer's look with an image whose white is `most` of the pattern's units.
-fn flash_look(species: &Species, most: f32) -> StandardMaterial {
+/// The glow layer's look with `image`, whose white is `most` of the pattern's units.
+fn flash_look(species: &Species, most: f32, image: Handle<Image>) -> Look {
     let [r, g, b] = species.glow_color;
     let radiance = LinearRgba::rgb(r, g, b) * (most * GLOW_RADIANCE / PLAIN_GLOW);
-    StandardMaterial {
-        base_color: radiance.into(),
-        ..glow_material(species, None)
+    Look {
+        base: StandardMaterial {
+            base_color: radiance.into(),
+            base_color_texture: Some(image),
+            ..glow_material(species, None)
+        },
+        tissue: glow_tissue(species),
     }
 }
 

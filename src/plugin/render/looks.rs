@@ -13,6 +13,7 @@
 //! through [`SurfaceMaterial`](super::SurfaceMaterial), which extends them.
 
 use super::patterns::{PLAIN_GLOW, PatternImages};
+use super::tissue::Tissue;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -47,13 +48,41 @@ impl<M: Material> SpeciesMaterials<M> {
     }
 }
 
+/// One of our materials: its `StandardMaterial` and its tissue layer.
+#[derive(Clone, Debug)]
+pub(crate) struct Look {
+    pub base: StandardMaterial,
+    pub tissue: Tissue,
+}
+
 /// The three looks of a species' jellyfish: bell, tentacles, glow layer.
-pub(crate) fn looks(species: &Species, pattern: Option<&PatternImages>) -> [StandardMaterial; 3] {
+pub(crate) fn looks(species: &Species, pattern: Option<&PatternImages>) -> [Look; 3] {
     [
-        bell_material(species, pattern),
-        tentacle_material(species),
-        glow_material(species, pattern),
+        Look {
+            base: bell_material(species, pattern),
+            tissue: Tissue::shell(),
+        },
+        tentacle_look(species, 1.0),
+        Look {
+            base: glow_material(species, pattern),
+            tissue: glow_tissue(species),
+        },
     ]
+}
+
+/// The tentacles' look at `scale` ([`tentacle_material_at`]): solid tubes.
+pub(crate) fn tentacle_look(species: &Species, scale: f32) -> Look {
+    Look {
+        base: tentacle_material_at(species, scale),
+        tissue: Tissue::solid(),
+    }
+}
+
+/// The glow layer's tissue: its painted light, and the glow band in the glow's colour at
+/// the species' `glow_band` (in the units of `glow`).
+pub fn glow_tissue(species: &Species) -> Tissue {
+    let [r, g, b] = species.glow_color;
+    Tissue::glowing(LinearRgba::rgb(r, g, b) * (species.glow_band * GLOW_RADIANCE))
 }
 
 /// Radiance (linear, before tonemapping) that one surface of a plain bell adds through
@@ -65,6 +94,9 @@ pub const GLOW_RADIANCE: f32 = 0.25;
 /// transmission so a bell lit from behind brightens. With its `pattern` the colour and
 /// opacity come from the canal and gonad image; without, the bell is plain. Its glow is a
 /// separate, additive layer ([`glow_material`]).
+///
+/// The opacity is one sheet's seen straight on where the mesoglea is thickest (the apex);
+/// the tissue layer ([`Tissue::SHELL`]) makes it follow the optical path elsewhere.
 pub fn bell_material(species: &Species, pattern: Option<&PatternImages>) -> StandardMaterial {
     let [r, g, b, a] = species.bell_color;
     let base_color = match pattern {
@@ -112,7 +144,7 @@ pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
 pub const TENTACLE_SORT_OFFSET: f32 = 0.5;
 
 /// Tentacles of a jellyfish drawn at scale 1: thin, so denser than the bell to stay
-/// visible ([`tentacle_material_at`] for other scales).
+/// visible, tinted by the species' glow ([`tentacle_material_at`] for other scales).
 pub fn tentacle_material(species: &Species) -> StandardMaterial {
     tentacle_material_at(species, 1.0)
 }
@@ -126,10 +158,19 @@ pub fn tentacle_material(species: &Species) -> StandardMaterial {
 /// So the tentacles sort [`TENTACLE_SORT_OFFSET`] diameters farther than they are (in
 /// world units, hence the scale), and draw after their bell only when the camera looks up
 /// at them from below.
+///
+/// Tentacles take half their colour from the glow, and glow faintly themselves (a tenth
+/// of the bell's glow layer), so they read as living tissue, never grey tubes; their
+/// opacity is the root's, seen through its axis ([`Tissue::SOLID`]).
 pub fn tentacle_material_at(species: &Species, scale: f32) -> StandardMaterial {
     let mut m = bell_material(species, None);
-    m.base_color
-        .set_alpha((species.bell_color[3] * 1.8).min(1.0));
+    let [r, g, b, a] = species.bell_color;
+    let glow = Vec3::from_array(species.glow_color);
+    let tint = glow / glow.max_element().max(1e-6);
+    let rgb = (Vec3::new(r, g, b) + tint) * 0.5;
+    m.base_color = Color::linear_rgba(rgb.x, rgb.y, rgb.z, (a * 1.8).min(1.0));
+    let light = glow * (0.1 * species.glow * GLOW_RADIANCE);
+    m.emissive = LinearRgba::rgb(light.x, light.y, light.z);
     // Bevy also hands the bias's integer part to the depth test as a constant bias: a few
     // of the depth buffer's least steps, nothing a jellyfish shows.
     m.depth_bias = -TENTACLE_SORT_OFFSET * species.diameter * scale;

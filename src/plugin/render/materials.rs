@@ -2,12 +2,18 @@
 //! ([`SpeciesMaterials`]), made with a species' first jellyfish, updated in place when the
 //! species is edited, and put on each new mesh of the path that wears it.
 //!
-//! Only where the app renders (the material's assets exist): headless apps and tests run
-//! without it. A jellyfish that already has a `MeshMaterial3d<StandardMaterial>` keeps its
-//! own, and is drawn with CPU meshes. Leave [`JellyfishMaterialPlugin`] out to dress every
-//! jellyfish yourself (they are then drawn with CPU meshes).
+//! Where the device reads storage buffers in vertex shaders, both surface paths wear
+//! [`SurfaceMaterial`] (its vertex shader takes a CPU mesh's vertices as they are, marked
+//! by [`CPU_MESH_TAG`]), so both draw the tissue layer; elsewhere (WebGL2) CPU meshes wear
+//! plain `StandardMaterial`s. Only where the app renders (the material's assets exist):
+//! headless apps and tests run without it. A jellyfish (or a part of one) that has a
+//! `MeshMaterial3d<StandardMaterial>` of the game's own keeps it, and is drawn with CPU
+//! meshes. Leave [`JellyfishMaterialPlugin`] out to dress every jellyfish yourself (they
+//! are then drawn with CPU meshes).
+//!
+//! [`CPU_MESH_TAG`]: crate::plugin::render::CPU_MESH_TAG
 
-use super::looks::{SpeciesMaterials, looks, scale_step, step_scale, tentacle_material_at};
+use super::looks::{Look, SpeciesMaterials, looks, scale_step, step_scale, tentacle_look};
 use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 use super::patterns::BellPatterns;
 use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
@@ -18,8 +24,9 @@ use bevy::ecs::system::SystemParam;
 use bevy::pbr::{MaterialPlugin, PbrPlugin};
 use bevy::prelude::*;
 
-/// Makes, updates and assigns our materials: `StandardMaterial`s on CPU meshes and
-/// [`SurfaceMaterial`]s on templates, with each species' canal and gonad pattern.
+/// Makes, updates and assigns our materials: [`SurfaceMaterial`]s (and, without storage
+/// buffers in vertex shaders, `StandardMaterial`s on CPU meshes), with each species'
+/// canal and gonad pattern.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct JellyfishMaterialPlugin;
 
@@ -27,6 +34,9 @@ impl Plugin for JellyfishMaterialPlugin {
     fn build(&self, app: &mut App) {
         // Only where the app renders; add the plugins after `DefaultPlugins`.
         if app.is_plugin_added::<PbrPlugin>() {
+            bevy::asset::embedded_asset!(app, "tissue.wgsl");
+            // One material type of ours for both paths: a third material plugin made
+            // template tentacles vanish in Bevy 0.19 (not understood; see the tests).
             app.add_plugins(MaterialPlugin::<SurfaceMaterial>::default());
         }
         app.init_resource::<BellPatterns>()
@@ -57,58 +67,77 @@ impl Plugin for JellyfishMaterialPlugin {
     }
 }
 
-/// A material our jellyfish wear: made from the `StandardMaterial` look of
-/// [`bell_material`](super::bell_material) and its siblings.
+/// A material our jellyfish wear: made from the look of
+/// [`bell_material`](super::bell_material) and its siblings, with its tissue layer.
 pub(crate) trait JellyfishLook: Material {
-    /// The surfaces that wear it.
-    const PATH: SurfacePath;
+    /// Whether a jellyfish drawn on `path` wears it, where the shape buffers exist or not.
+    fn wears(path: Option<SurfacePath>, buffers: bool) -> bool;
+
+    /// Whether `standard`, on a part wearing none of ours, is the game's own.
+    fn is_games(standard: &Handle<StandardMaterial>, ours: &SpeciesMaterials<Self>) -> bool;
 
     /// Whether it can be made yet (templates need the shape buffers).
     fn ready(buffers: Option<&ShapeBuffers>) -> bool;
 
     /// The material with `look`; `None` until it is [`ready`](Self::ready).
-    fn dress(look: StandardMaterial, buffers: Option<&ShapeBuffers>) -> Option<Self>;
+    fn dress(look: Look, buffers: Option<&ShapeBuffers>) -> Option<Self>;
 
     /// Gives an existing material a new look (the species was edited).
-    fn restyle(&mut self, look: StandardMaterial);
+    fn restyle(&mut self, look: Look);
 }
 
+/// The fallback: CPU meshes where the device has no storage buffers in vertex shaders,
+/// without the tissue layer.
 impl JellyfishLook for StandardMaterial {
-    const PATH: SurfacePath = SurfacePath::CpuMeshes;
+    fn wears(path: Option<SurfacePath>, buffers: bool) -> bool {
+        path == Some(SurfacePath::CpuMeshes) && !buffers
+    }
+
+    fn is_games(standard: &Handle<StandardMaterial>, ours: &SpeciesMaterials<Self>) -> bool {
+        !ours.is_ours(standard)
+    }
 
     fn ready(_: Option<&ShapeBuffers>) -> bool {
         true
     }
 
-    fn dress(look: StandardMaterial, _: Option<&ShapeBuffers>) -> Option<Self> {
-        Some(look)
+    fn dress(look: Look, _: Option<&ShapeBuffers>) -> Option<Self> {
+        Some(look.base)
     }
 
-    fn restyle(&mut self, look: StandardMaterial) {
-        *self = look;
+    fn restyle(&mut self, look: Look) {
+        *self = look.base;
     }
 }
 
 impl JellyfishLook for SurfaceMaterial {
-    const PATH: SurfacePath = SurfacePath::Templates;
+    fn wears(path: Option<SurfacePath>, buffers: bool) -> bool {
+        path.is_some() && buffers
+    }
+
+    fn is_games(_: &Handle<StandardMaterial>, _: &SpeciesMaterials<Self>) -> bool {
+        true
+    }
 
     fn ready(buffers: Option<&ShapeBuffers>) -> bool {
         buffers.is_some()
     }
 
-    fn dress(look: StandardMaterial, buffers: Option<&ShapeBuffers>) -> Option<Self> {
+    fn dress(look: Look, buffers: Option<&ShapeBuffers>) -> Option<Self> {
         let buffers = buffers?;
         Some(SurfaceMaterial {
-            base: look,
+            base: look.base,
             extension: SurfaceExtension {
                 offsets: buffers.offsets.clone(),
                 shapes: buffers.shapes.clone(),
+                tissue: look.tissue,
             },
         })
     }
 
-    fn restyle(&mut self, look: StandardMaterial) {
-        self.base = look;
+    fn restyle(&mut self, look: Look) {
+        self.base = look.base;
+        self.extension.tissue = look.tissue;
     }
 }
 
@@ -136,7 +165,7 @@ fn update<M: JellyfishLook>(
                 }
                 for ((_, step), handle) in cache.scaled_tentacles.iter().filter(|e| e.0.0 == *id) {
                     if let Some(mut m) = materials.get_mut(handle) {
-                        m.restyle(tentacle_material_at(s, step_scale(*step)));
+                        m.restyle(tentacle_look(s, step_scale(*step)));
                     }
                 }
             }
@@ -154,8 +183,27 @@ fn update<M: JellyfishLook>(
 /// Entities with `T` that have no `M` yet.
 type Undressed<T, M> = (With<T>, Without<MeshMaterial3d<M>>);
 
-/// Tentacle entities, with the material they wear, if any.
-type Tentacles<M> = (Entity, &'static ChildOf, Option<&'static MeshMaterial3d<M>>);
+/// A part's `StandardMaterial`, if it has one (ours on the fallback path, or the game's).
+type Standard = Option<&'static MeshMaterial3d<StandardMaterial>>;
+
+/// A jellyfish seen from its parts: what it is, how it is drawn, the material of ours it
+/// wears, its `StandardMaterial` if any, and where it is.
+type Parent<M> = (
+    &'static Jellyfish,
+    &'static JellyfishMeshes,
+    Option<&'static MeshMaterial3d<M>>,
+    Standard,
+    &'static GlobalTransform,
+);
+
+/// Tentacle entities, with the material of ours they wear, if any, and their
+/// `StandardMaterial`.
+type Tentacles<M> = (
+    Entity,
+    &'static ChildOf,
+    Option<&'static MeshMaterial3d<M>>,
+    Standard,
+);
 
 /// What a species' materials are made from: its parameters, its painted patterns, the
 /// shape buffers (templates) and the asset stores they go into.
@@ -206,31 +254,43 @@ impl<M: JellyfishLook> Wardrobe<'_, M> {
             return Some(made.clone());
         }
         let s = self.species.get(handle)?;
-        let look = tentacle_material_at(s, step_scale(step));
+        let look = tentacle_look(s, step_scale(step));
         let made = self.materials.add(M::dress(look, self.buffers.as_deref())?);
         self.cache.scaled_tentacles.insert(key, made.clone());
         Some(made)
     }
 }
 
-/// Puts our materials on the meshes of the path that wears `M`.
+/// Puts our materials on the meshes of the path that wears `M`, and takes ours off a part
+/// the game has since dressed in its own.
 fn assign<M: JellyfishLook>(
     mut commands: Commands,
-    bells: Query<(Entity, &Jellyfish, &JellyfishMeshes), Without<MeshMaterial3d<M>>>,
-    tentacles: Query<Tentacles<M>, With<JellyfishTentacles>>,
-    glows: Query<(Entity, &ChildOf), Undressed<JellyfishGlow, M>>,
-    parents: Query<(
-        &Jellyfish,
-        &JellyfishMeshes,
-        Option<&MeshMaterial3d<M>>,
-        &GlobalTransform,
+    redressed: Query<(
+        Entity,
+        &MeshMaterial3d<M>,
+        &MeshMaterial3d<StandardMaterial>,
     )>,
+    bells: Query<(Entity, &Jellyfish, &JellyfishMeshes, Standard), Without<MeshMaterial3d<M>>>,
+    tentacles: Query<Tentacles<M>, With<JellyfishTentacles>>,
+    glows: Query<(Entity, &ChildOf, Standard), Undressed<JellyfishGlow, M>>,
+    parents: Query<Parent<M>>,
     mut wardrobe: Wardrobe<M>,
 ) {
-    let worn = |m: &JellyfishMeshes| m.path == Some(M::PATH);
-    for (entity, jelly, meshes) in &bells {
+    let buffers = wardrobe.buffers.is_some();
+    let worn = |m: &JellyfishMeshes| M::wears(m.path, buffers);
+    let games = |standard: Option<&MeshMaterial3d<StandardMaterial>>,
+                 ours: &SpeciesMaterials<M>| {
+        standard.is_some_and(|s| M::is_games(&s.0, ours))
+    };
+    for (entity, ours, standard) in &redressed {
+        if wardrobe.cache.is_ours(&ours.0) && games(Some(standard), &wardrobe.cache) {
+            commands.entity(entity).remove::<MeshMaterial3d<M>>();
+        }
+    }
+    for (entity, jelly, meshes, standard) in &bells {
         if meshes.umbrella.is_some()
             && worn(meshes)
+            && !games(standard, &wardrobe.cache)
             && let Some([bell, ..]) = wardrobe.get(&jelly.species)
         {
             commands.entity(entity).insert(MeshMaterial3d(bell));
@@ -238,10 +298,11 @@ fn assign<M: JellyfishLook>(
     }
     // Tentacles follow their jellyfish's scale (their sort offset is in world units), so
     // dressed ones are checked too, unless the game dressed them.
-    for (entity, child_of, worn_now) in &tentacles {
-        if let Ok((jelly, meshes, _, at)) = parents.get(child_of.parent())
+    for (entity, child_of, worn_now, standard) in &tentacles {
+        if let Ok((jelly, meshes, _, _, at)) = parents.get(child_of.parent())
             && worn(meshes)
             && worn_now.is_none_or(|m| wardrobe.cache.is_ours(&m.0))
+            && (worn_now.is_some() || !games(standard, &wardrobe.cache))
             && let Some(wanted) = wardrobe.tentacles(
                 &jelly.species,
                 scale_step(at.affine().matrix3.y_axis.length()),
@@ -252,9 +313,11 @@ fn assign<M: JellyfishLook>(
         }
     }
     // A bell in a material of the game's own keeps it alone: no glow of ours over it.
-    for (entity, child_of) in &glows {
-        if let Ok((jelly, meshes, bell, _)) = parents.get(child_of.parent())
+    for (entity, child_of, standard) in &glows {
+        if let Ok((jelly, meshes, bell, bell_standard, _)) = parents.get(child_of.parent())
             && worn(meshes)
+            && !games(standard, &wardrobe.cache)
+            && !games(bell_standard, &wardrobe.cache)
             && let Some([ours, .., glow]) = wardrobe.get(&jelly.species)
             && bell.is_none_or(|b| b.0 == ours)
         {

@@ -70,6 +70,12 @@ impl JellyfishMeshes {
     }
 }
 
+/// The `MeshTag` of a jellyfish part drawn with a CPU mesh: the template material's
+/// vertex shader then draws the mesh's own vertices, so both paths wear one material.
+pub const CPU_MESH_TAG: u32 = u32::MAX;
+
+const _: () = assert!(CPU_MESH_TAG as usize == crate::shape::packed::layout::CPU_MESH_TAG);
+
 /// Marks the child entity holding a jellyfish's tentacle mesh.
 #[derive(Component, Clone, Copy, Debug, Default, Reflect)]
 #[reflect(Component)]

@@ -1,6 +1,6 @@
 //! Drawing jellyfish: each frame's surfaces built from the blended slice, on the CPU as
 //! meshes of their own or on the GPU from shared templates ([`SurfacePath`]), bounded and
-//! culled from the slice, and dressed in our two-layer material.
+//! culled from the slice, and dressed in our two-layer material with its tissue layer.
 
 mod culling;
 mod flash;
@@ -11,17 +11,19 @@ mod meshes;
 mod patterns;
 mod rebuild;
 mod templates;
+mod tissue;
 
 pub use flash::FLASH_SPREAD;
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use looks::{
     GLOW_RADIANCE, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material, glow_material,
-    tentacle_material, tentacle_material_at,
+    glow_tissue, tentacle_material, tentacle_material_at,
 };
 pub use materials::JellyfishMaterialPlugin;
-pub use meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+pub use meshes::{CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
 pub use patterns::{BellPatterns, PatternImages};
 pub use templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
+pub use tissue::Tissue;
 
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::schedule::JellyfishSystems;

@@ -3,7 +3,9 @@
 //! skipped for jellyfish no camera sees (see [`culling`](super::culling)).
 
 use super::culling::{active_frusta, seen, slice_bounds};
-use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+use super::meshes::{
+    CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
+};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
@@ -12,7 +14,7 @@ use crate::shape::{self, SurfaceBuffers};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::camera::visibility::NoAutoAabb;
-use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
+use bevy::mesh::{Indices, MeshTag, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use std::time::Instant;
 
@@ -123,9 +125,15 @@ pub(super) fn write_meshes(
             None if umbrella.vertex_count() > 0 => {
                 timings.add_mesh_bytes(bytes(umbrella));
                 let handle = assets.add(new_mesh(umbrella, RenderAssetUsages::default()));
-                commands.entity(entity).insert(Mesh3d(handle.clone()));
+                let tag = MeshTag(CPU_MESH_TAG);
+                commands
+                    .entity(entity)
+                    .insert((Mesh3d(handle.clone()), tag.clone()));
                 let glow = commands
-                    .spawn(glow_layer(entity, Mesh3d(handle.clone()), meshes.bounds))
+                    .spawn((
+                        glow_layer(entity, Mesh3d(handle.clone()), meshes.bounds),
+                        tag,
+                    ))
                     .id();
                 meshes.glow_entity = Some(glow);
                 meshes.umbrella = Some(handle);
@@ -155,6 +163,7 @@ pub(super) fn write_meshes(
                     .spawn((
                         JellyfishTentacles,
                         Mesh3d(handle.clone()),
+                        MeshTag(CPU_MESH_TAG),
                         Transform::default(),
                         meshes.bounds.unwrap_or_default(),
                         NoAutoAabb,
@@ -191,40 +200,69 @@ pub(crate) fn new_mesh(b: &mut SurfaceBuffers, usage: RenderAssetUsages) -> Mesh
     mesh
 }
 
-/// Hands the new positions and normals to the mesh by swapping buffers (the build
-/// overwrites every vertex each frame, so what comes back is as good as empty); the whole
-/// topology is copied only when it changed. Returns the bytes written.
+/// Hands the new positions, normals and tissue (the second UV channel, which the tissue
+/// material reads) to the mesh by swapping buffers (the build overwrites every vertex each
+/// frame, so what comes back is as good as empty); the whole topology is copied only when
+/// it changed. Returns the bytes written.
 fn write(mesh: &mut Mesh, b: &mut SurfaceBuffers, topology: bool) -> usize {
     let written = bytes(b);
     let in_place = !topology
-        && swap3(mesh, Mesh::ATTRIBUTE_POSITION, &mut b.positions)
-        && swap3(mesh, Mesh::ATTRIBUTE_NORMAL, &mut b.normals);
+        && swap(mesh, Mesh::ATTRIBUTE_POSITION, &mut b.positions)
+        && swap(mesh, Mesh::ATTRIBUTE_NORMAL, &mut b.normals)
+        && swap(mesh, Mesh::ATTRIBUTE_UV_1, &mut b.tissue);
     if !in_place {
         mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, b.positions.clone());
         mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals.clone());
         mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, b.uvs.clone());
+        mesh.insert_attribute(Mesh::ATTRIBUTE_UV_1, b.tissue.clone());
         mesh.insert_indices(Indices::U32(b.indices.clone()));
     }
     written
 }
 
 /// Bytes a changed mesh costs the renderer: Bevy 0.19 re-extracts and re-uploads a
-/// modified mesh whole (positions, normals, texture coordinates, indices), however little
-/// of it changed.
+/// modified mesh whole (positions, normals, both texture coordinates, indices), however
+/// little of it changed.
 fn bytes(b: &SurfaceBuffers) -> usize {
-    b.vertex_count() * (2 * std::mem::size_of::<[f32; 3]>() + 8) + b.indices.len() * 4
+    b.vertex_count() * (2 * std::mem::size_of::<[f32; 3]>() + 2 * 8) + b.indices.len() * 4
 }
 
-fn swap3(
-    mesh: &mut Mesh,
-    attribute: bevy::mesh::MeshVertexAttribute,
-    values: &mut Vec<[f32; 3]>,
-) -> bool {
+/// Swaps `values` with the mesh's `attribute` where it has their type and length.
+fn swap<T>(mesh: &mut Mesh, attribute: bevy::mesh::MeshVertexAttribute, values: &mut Vec<T>) -> bool
+where
+    T: Attribute,
+{
     match mesh.try_attribute_mut(attribute) {
-        Ok(VertexAttributeValues::Float32x3(v)) if v.len() == values.len() => {
-            std::mem::swap(v, values);
-            true
-        }
+        Ok(v) => T::swap(v, values),
         _ => false,
+    }
+}
+
+/// A vertex attribute's element type, as `VertexAttributeValues` holds it.
+trait Attribute: Sized {
+    fn swap(held: &mut VertexAttributeValues, values: &mut Vec<Self>) -> bool;
+}
+
+impl Attribute for [f32; 3] {
+    fn swap(held: &mut VertexAttributeValues, values: &mut Vec<Self>) -> bool {
+        match held {
+            VertexAttributeValues::Float32x3(v) if v.len() == values.len() => {
+                std::mem::swap(v, values);
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+impl Attribute for [f32; 2] {
+    fn swap(held: &mut VertexAttributeValues, values: &mut Vec<Self>) -> bool {
+        match held {
+            VertexAttributeValues::Float32x2(v) if v.len() == values.len() => {
+                std::mem::swap(v, values);
+                true
+            }
+            _ => false,
+        }
     }
 }

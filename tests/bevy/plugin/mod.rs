@@ -14,8 +14,8 @@ use bevy::prelude::*;
 use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    CycleCaches, DetailLevels, JellyfishGeometry, JellyfishGlow, JellyfishMeshes, JellyfishSlice,
-    ShapeBuffers, SurfaceMode, SurfacePath, TENTACLE_SORT_OFFSET, Tier,
+    CPU_MESH_TAG, CycleCaches, DetailLevels, JellyfishGeometry, JellyfishGlow, JellyfishMeshes,
+    JellyfishSlice, ShapeBuffers, SurfaceMode, SurfacePath, TENTACLE_SORT_OFFSET, Tier,
 };
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceGeometry, SliceSim, Species,

@@ -194,7 +194,8 @@ fn switching_surfaces_moves_living_jellyfish_between_paths() {
     run(&mut app, 3);
     let t = tags(&mut app);
     assert!(
-        t.iter().all(|(_, tag, m)| tag.is_none() && m.is_some()),
+        t.iter()
+            .all(|(_, tag, m)| *tag == Some(CPU_MESH_TAG) && m.is_some()),
         "{t:?}"
     );
     assert_ne!(t[0].2, t[1].2, "CPU meshes are each jellyfish's own");

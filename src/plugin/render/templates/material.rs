@@ -1,6 +1,7 @@
 //! The template material: the jellyfish's `StandardMaterial` with a vertex shader that
-//! shapes the template from the shape buffers.
+//! shapes the template from the shape buffers, and the tissue layer's fragment shader.
 
+use crate::plugin::render::tissue::{TISSUE_SHADER, Tissue};
 use bevy::pbr::{ExtendedMaterial, MaterialExtension};
 use bevy::prelude::*;
 use bevy::render::render_resource::AsBindGroup;
@@ -11,7 +12,8 @@ use bevy::shader::ShaderRef;
 /// template mesh.
 pub type SurfaceMaterial = ExtendedMaterial<StandardMaterial, SurfaceExtension>;
 
-/// The shape buffers, bound for the vertex stage (bindings 100 and 101).
+/// The shape buffers, bound for the vertex stage (bindings 100 and 101), and the tissue
+/// uniform (binding 102, as [`TissueExtension`](crate::plugin::render::TissueExtension)).
 #[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
 pub struct SurfaceExtension {
     /// `u32` per slot: where its packed shape starts in `shapes`.
@@ -20,6 +22,9 @@ pub struct SurfaceExtension {
     /// Every jellyfish's packed shape, `f32`.
     #[storage(101, read_only, visibility(vertex))]
     pub shapes: Handle<ShaderBuffer>,
+    /// How the opacity follows the path, and the band.
+    #[uniform(102)]
+    pub tissue: Tissue,
 }
 
 const SHADER: &str = "embedded://bevy_jellyfish/plugin/render/templates/surface.wgsl";
@@ -35,5 +40,9 @@ impl MaterialExtension for SurfaceExtension {
 
     fn deferred_vertex_shader() -> ShaderRef {
         SHADER.into()
+    }
+
+    fn fragment_shader() -> ShaderRef {
+        TISSUE_SHADER.into()
     }
 }

@@ -84,7 +84,9 @@ fn resolve_path(
         }
         SurfaceMode::Templates => SurfacePath::Templates,
     };
-    if path == SurfacePath::Templates
+    // CPU meshes wear the template material too where the device can bind it.
+    let bound = supported == Some(true) && materials.is_some();
+    if (path == SurfacePath::Templates || bound)
         && shapes.is_none()
         && let Some(buffers) = buffers.as_deref_mut()
     {

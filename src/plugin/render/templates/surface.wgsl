@@ -2,7 +2,8 @@
 //
 // A template mesh (one per resolution) carries only topology and UVs; each instance's
 // `MeshTag` picks its shape block (tag >> 1) and its part (tag & 1: 0 the umbrella, 1 the
-// tentacles), and this shader turns the vertex's index into its position and normal. It
+// tentacles), and this shader turns the vertex's index into its position and normal. A
+// CPU mesh wearing the same material (tag CPU_MESH_TAG) is drawn as it is. It
 // mirrors `shape::packed` (`umbrella_vertex`, `tentacle_vertex`) and `shape::perlin` line
 // for line: change one, change the other (the Rust mirror is tested against the CPU mesh).
 // Its constants, `packed::*` (the block's layout and what the arithmetic shares with the
@@ -25,21 +26,63 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> offsets: array<u32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(101) var<storage, read> shapes: array<f32>;
 
+// A template's own attributes are its rest shape, which only CPU meshes (tagged
+// packed::CPU_MESH_TAG) draw; the locations are those of bevy_pbr's forward_io and
+// prepass_io.
 struct Vertex {
     @builtin(instance_index) instance_index: u32,
     @builtin(vertex_index) index: u32,
-#ifdef VERTEX_UVS_A
+    @location(0) position: vec3<f32>,
 #ifdef PREPASS_PIPELINE
+#ifdef VERTEX_UVS_A
     @location(1) uv: vec2<f32>,
+#endif
+#ifdef VERTEX_UVS_B
+    @location(2) uv_b: vec2<f32>,
+#endif
+#ifdef NORMAL_PREPASS_OR_DEFERRED_PREPASS
+#ifdef VERTEX_NORMALS
+    @location(3) normal: vec3<f32>,
+#endif
+#endif
 #else
+#ifdef VERTEX_NORMALS
+    @location(1) normal: vec3<f32>,
+#endif
+#ifdef VERTEX_UVS_A
     @location(2) uv: vec2<f32>,
+#endif
+#ifdef VERTEX_UVS_B
+    @location(3) uv_b: vec2<f32>,
 #endif
 #endif
 };
 
+// A CPU mesh's vertex as it is.
+fn cpu_vertex(vertex: Vertex) -> Surface {
+    var out = Surface(vertex.position, vec3(0.0, 1.0, 0.0), vec2(1.0, 0.0));
+#ifdef PREPASS_PIPELINE
+#ifdef NORMAL_PREPASS_OR_DEFERRED_PREPASS
+#ifdef VERTEX_NORMALS
+    out.normal = vertex.normal;
+#endif
+#endif
+#else
+#ifdef VERTEX_NORMALS
+    out.normal = vertex.normal;
+#endif
+#endif
+#ifdef VERTEX_UVS_B
+    out.tissue = vertex.uv_b;
+#endif
+    return out;
+}
+
 struct Surface {
     position: vec3<f32>,
     normal: vec3<f32>,
+    // shape::tissue: relative thickness, glow band.
+    tissue: vec2<f32>,
 };
 
 struct Disc {
@@ -218,7 +261,7 @@ fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
         if surface == 0u {
             centre = ex.centre;
         }
-        return Surface(centre, n * side);
+        return Surface(centre, n * side, vec2(1.0, 0.0));
     }
     let segments = count(base, packed::H_SEGMENTS);
     let sigma = packed::TAU * f32(j % segments) / f32(segments);
@@ -233,7 +276,39 @@ fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
     } else {
         position = disc_point(sub, cs) + n * shared_offset;
     }
-    return Surface(position, n * side);
+    return Surface(position, n * side, vec2(1.0, 0.0));
+}
+
+// ---- shape::tissue ----
+
+fn ring_thickness(base: u32, k: u32) -> f32 {
+    let at = ring_at(base, k);
+    let sub = read_disc(at + packed::RING_SUBUMBRELLA);
+    let ex = read_disc(at + packed::RING_EXUMBRELLA);
+    return distance(disc_point(ex, vec2(1.0, 0.0)), disc_point(sub, vec2(1.0, 0.0)));
+}
+
+fn relative_thickness(thickness: f32, reference: f32) -> f32 {
+    if reference > 0.0 {
+        return thickness / reference;
+    }
+    return 1.0;
+}
+
+fn band(contraction: f32) -> f32 {
+    return 4.0 * contraction * (1.0 - contraction);
+}
+
+fn taper(fraction: f32) -> f32 {
+    return 1.0 - (1.0 - packed::TENTACLE_TIP) * clamp(fraction, 0.0, 1.0);
+}
+
+// packed::ring_tissue.
+fn ring_tissue(base: u32, k: u32) -> vec2<f32> {
+    return vec2(
+        relative_thickness(ring_thickness(base, k), ring_thickness(base, 0u)),
+        band(shapes[ring_at(base, k) + packed::RING_CONTRACTION]),
+    );
 }
 
 // Sheet ring l (-1 the exumbrellar apex ... 2·rings the subumbrellar apex) at column j.
@@ -258,7 +333,9 @@ fn umbrella_vertex(base: u32, index: u32) -> Surface {
     let surface = index / surface_len;
     let r = index % surface_len;
     if r == 0u {
-        return umbrella_point(base, surface, 0u, 0u);
+        var apex = umbrella_point(base, surface, 0u, 0u);
+        apex.tissue = ring_tissue(base, 0u);
+        return apex;
     }
     let k = 1u + (r - 1u) / (segments + 1u);
     let j = (r - 1u) % (segments + 1u);
@@ -274,6 +351,7 @@ fn umbrella_vertex(base: u32, index: u32) -> Surface {
     if dot(normal, normal) > 0.0 {
         out.normal = normalize(normal);
     }
+    out.tissue = ring_tissue(base, k);
     return out;
 }
 
@@ -441,6 +519,15 @@ fn arm_angle(base: u32, t: u32) -> vec2<f32> {
     return vec2(f32(a), packed::TAU * f32(a) / f32(arms));
 }
 
+// OralStyle::thickness.
+fn oral_thickness(base: u32, manubrium: bool, f: f32) -> f32 {
+    var reference = 0.15 * shapes[base + packed::H_ARM_WIDTH];
+    if manubrium {
+        reference = shapes[base + packed::H_MANUBRIUM_RADIUS];
+    }
+    return relative_thickness(oral_section(base, manubrium, f).y, reference);
+}
+
 // OralStyle::section: (half-width, half-thickness).
 fn oral_section(base: u32, manubrium: bool, f: f32) -> vec2<f32> {
     if manubrium {
@@ -492,11 +579,13 @@ fn oral_vertex(base: u32, index: u32) -> Surface {
         vec3(0.0, -1.0, 0.0),
     );
     let manubrium = is_manubrium(base, t);
+    let f = f32(m) / f32(last);
+    let tissue = vec2(oral_thickness(base, manubrium, f), 0.0);
     if at.cap < 0 {
-        return Surface(c - oral_section(base, manubrium, 0.0).y * tangent, -tangent);
+        return Surface(c - oral_section(base, manubrium, 0.0).y * tangent, -tangent, tissue);
     }
     if at.cap > 0 {
-        return Surface(c + oral_section(base, manubrium, 1.0).y * tangent, tangent);
+        return Surface(c + oral_section(base, manubrium, 1.0).y * tangent, tangent, tissue);
     }
     var arm = vec2(0.0, 0.0);
     if !manubrium {
@@ -509,16 +598,16 @@ fn oral_vertex(base: u32, index: u32) -> Surface {
     let phi = packed::TAU * f32(at.side % packed::ORAL_SIDES) / f32(packed::ORAL_SIDES);
     let e = cos(phi);
     let o = sin(phi);
-    let f = f32(m) / f32(last);
     let section = oral_section(base, manubrium, f);
     var ruffle = 0.0;
     if !manubrium {
-        ruffle = shapes[base + packed::H_ARM_FRILL] * 2.0 * section.x * e * e
-            * sin(packed::TAU * shapes[base + packed::H_ARM_WAVES] * f + 1.7 * arm.x);
+        let waves = 2.0 * sin(packed::TAU * shapes[base + packed::H_ARM_WAVES] * f + 1.7 * arm.x);
+        ruffle = shapes[base + packed::H_ARM_FRILL] * section.x * e * e
+            * (packed::ARM_CURL + waves);
     }
     let position = c + section.x * e * n + (section.y * o + ruffle) * b;
     let normal = normalize_or(section.y * e * n + section.x * o * b, n);
-    return Surface(position, normal);
+    return Surface(position, normal, tissue);
 }
 
 // The tentacles, then the oral tubes.
@@ -539,12 +628,14 @@ fn tentacle_vertex(base: u32, index: u32) -> Surface {
         tentacle_centre(base, t, min(m + 1u, last)) - tentacle_centre(base, t, max(m, 1u) - 1u),
         vec3(0.0, -1.0, 0.0),
     );
-    let radius = shapes[base + packed::H_TENTACLE_RADIUS];
+    let thin = taper(f32(m) / f32(last));
+    let radius = shapes[base + packed::H_TENTACLE_RADIUS] * thin;
+    let tissue = vec2(thin, 0.0);
     if at.cap < 0 {
-        return Surface(centre - radius * tangent, -tangent);
+        return Surface(centre - radius * tangent, -tangent, tissue);
     }
     if at.cap > 0 {
-        return Surface(centre + radius * tangent, tangent);
+        return Surface(centre + radius * tangent, tangent, tissue);
     }
     let sigma = packed::TAU * f32(t) / f32(count_t);
     let aperture = read_disc(base + packed::H_APERTURE);
@@ -552,19 +643,23 @@ fn tentacle_vertex(base: u32, index: u32) -> Surface {
     let n = across(outward, tangent);
     let phi = packed::TAU * f32(at.side % sides) / f32(sides);
     let out = cos(phi) * n + sin(phi) * cross(tangent, n);
-    return Surface(centre + radius * out, out);
+    return Surface(centre + radius * out, out, tissue);
 }
 
 @vertex
 fn vertex(vertex: Vertex) -> VertexOutput {
     let tag = mesh_functions::get_tag(vertex.instance_index);
-    let base = offsets[tag >> 1u];
-    let local = vertex.index - mesh[vertex.instance_index].first_vertex_index;
     var surface: Surface;
-    if (tag & 1u) == 0u {
-        surface = umbrella_vertex(base, local);
+    if tag == packed::CPU_MESH_TAG {
+        surface = cpu_vertex(vertex);
     } else {
-        surface = tentacle_vertex(base, local);
+        let base = offsets[tag >> 1u];
+        let local = vertex.index - mesh[vertex.instance_index].first_vertex_index;
+        if (tag & 1u) == 0u {
+            surface = umbrella_vertex(base, local);
+        } else {
+            surface = tentacle_vertex(base, local);
+        }
     }
 
     var out: VertexOutput;
@@ -603,6 +698,9 @@ fn vertex(vertex: Vertex) -> VertexOutput {
 
 #ifdef VERTEX_UVS_A
     out.uv = vertex.uv;
+#endif
+#ifdef VERTEX_UVS_B
+    out.uv_b = surface.tissue;
 #endif
 #ifdef VERTEX_OUTPUT_INSTANCE_INDEX
     out.instance_index = vertex.instance_index;
