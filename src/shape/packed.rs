@@ -338,7 +338,7 @@ pub struct Vertex {
     pub position: Vec3,
     /// Unit normal, outward.
     pub normal: Vec3,
-    /// What the tissue material reads ([`tissue`](super::tissue)).
+    /// What the tissue material reads ([`super::tissue`]).
     pub tissue: Vec2,
 }
 

@@ -190,3 +190,34 @@ pub(crate) fn scale_step(scale: f32) -> i32 {
 pub(crate) fn step_scale(step: i32) -> f32 {
     (step as f32 / 8.0).exp2()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bell is a shell, the tentacles solid tubes tinted by the glow, and the glow
+    /// layer carries the band in the glow's colour at `glow_band` (none at 0).
+    #[test]
+    fn each_layer_has_its_tissue() {
+        let species = Species::aequorea();
+        let [bell, tentacles, glow] = looks(&species, None);
+        assert_eq!(bell.tissue.kind, Tissue::SHELL);
+        assert_eq!(tentacles.tissue.kind, Tissue::SOLID);
+        assert_eq!(glow.tissue.kind, Tissue::PAINTED);
+        let [r, g, b] = species.glow_color;
+        let band = species.glow_band * GLOW_RADIANCE;
+        assert!((glow.tissue.band - Vec4::new(r, g, b, 0.0) * band).length() < 1e-6);
+        let rgb = tentacles.base.base_color.to_linear();
+        let bell_rgb = bell.base.base_color.to_linear();
+        assert!(
+            rgb.green - rgb.red > bell_rgb.green - bell_rgb.red,
+            "greener than the bell"
+        );
+        assert!(tentacles.base.emissive.green > 0.0);
+        let dark = Species {
+            glow_band: 0.0,
+            ..species
+        };
+        assert_eq!(glow_tissue(&dark).band, Vec4::ZERO);
+    }
+}

@@ -8,12 +8,13 @@ use bevy::render::render_resource::AsBindGroup;
 use bevy::render::storage::ShaderBuffer;
 use bevy::shader::ShaderRef;
 
-/// The jellyfish look of [`bell_material`](crate::plugin::render::bell_material) on a
-/// template mesh.
+/// The jellyfish look of [`bell_material`](crate::plugin::render::bell_material) with the
+/// tissue layer, on template meshes and (where the device binds it) CPU meshes.
 pub type SurfaceMaterial = ExtendedMaterial<StandardMaterial, SurfaceExtension>;
 
 /// The shape buffers, bound for the vertex stage (bindings 100 and 101), and the tissue
-/// uniform (binding 102, as [`TissueExtension`](crate::plugin::render::TissueExtension)).
+/// layer's uniform (binding 102). CPU meshes wear it too (tagged
+/// [`CPU_MESH_TAG`](crate::plugin::render::CPU_MESH_TAG)).
 #[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
 pub struct SurfaceExtension {
     /// `u32` per slot: where its packed shape starts in `shapes`.
