@@ -47,6 +47,8 @@ pub fn taper(fraction: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shape::{JellyMesh, Resolution, SliceOutline, umbrella};
+    use crate::species::Species;
     use glam::Vec2;
 
     #[test]
@@ -74,5 +76,57 @@ mod tests {
         assert!((relative_thickness(t, 2.0 * t) - 0.5).abs() < 1e-6);
         assert_eq!(relative_thickness(0.3, 0.0), 1.0);
         assert_eq!(relative_thickness(f32::NAN, 1.0), 1.0);
+    }
+
+    /// The tissue the material reads: 1 at the apex, thinner towards the margin (the
+    /// mesoglea thins); no band at rest, a band where the contracting bell is half-closed;
+    /// tentacles taper to their tip.
+    #[test]
+    fn tissue_follows_the_mesoglea_and_the_contraction() {
+        let species = Species::aurelia();
+        let res = Resolution::of(&species);
+        let (rings, segments) = (res.rings, res.segments);
+        let at =
+            |mesh: &JellyMesh, k| mesh.umbrella.tissue[umbrella::vertex(rings, segments, 0, k, 3)];
+        let rest = JellyMesh::from_slice(
+            &SliceOutline::contracted(&species, 31, 12, 0.0).view(),
+            &species,
+            1,
+            0.0,
+        )
+        .unwrap();
+        assert!((at(&rest, 0)[0] - 1.0).abs() < 1e-6);
+        assert!(
+            at(&rest, rings)[0] < 0.7 * at(&rest, 1)[0],
+            "{:?}",
+            rest.umbrella.tissue
+        );
+        assert!(rest.umbrella.tissue.iter().all(|t| t[1] == 0.0));
+        let half = JellyMesh::from_slice(
+            &SliceOutline::contracted(&species, 31, 12, 0.5).view(),
+            &species,
+            1,
+            0.0,
+        )
+        .unwrap();
+        let most = half
+            .umbrella
+            .tissue
+            .iter()
+            .map(|t| t[1])
+            .fold(0.0, f32::max);
+        assert!(most > 0.9, "band {most}");
+        // Subumbrella and exumbrella of a ring agree.
+        for k in 0..=rings {
+            let (ex, sub) = (
+                umbrella::vertex(rings, segments, 0, k, 0),
+                umbrella::vertex(rings, segments, 1, k, 0),
+            );
+            assert_eq!(half.umbrella.tissue[ex], half.umbrella.tissue[sub]);
+        }
+        let l = res.tentacles;
+        let tentacles = &half.tentacles.tissue;
+        assert_eq!(tentacles[l.ring(0, 0, 1)][0], 1.0);
+        assert!((tentacles[l.ring(0, l.points - 1, 1)][0] - TENTACLE_TIP).abs() < 1e-6);
     }
 }
