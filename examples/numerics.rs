@@ -412,6 +412,6 @@ fn main() {
         crumples(&species, flag("--cycles", 300));
     }
     if matches!(which, "convergence" | "all") {
-        convergence(&default, from, to);
+        convergence(&species, from, to);
     }
 }

@@ -597,6 +597,32 @@ fn bells_stay_whole_for_a_thousand_strokes(geometry: SliceGeometry) {
     }
 }
 
+in_both_geometries!(#[ignore = "long: every species at 1.5, 2 and 2.25 times its grid, 20 strokes"] fn bells_stay_whole_on_finer_grids);
+/// A finer grid under the same kernel refines the water, not the body: before the body kept
+/// its points, the moon jelly's outline crossed itself at 2·G (planar) and 2.25·G (r–z).
+fn bells_stay_whole_on_finer_grids(geometry: SliceGeometry) {
+    for base in shipped(geometry) {
+        for scale in [1.5, 2.0, 2.25] {
+            let species = Species {
+                grid_resolution: (base.grid_resolution as f32 * scale).round() as u32,
+                ..base.clone()
+            };
+            let (crumpled, samples, _, recoveries) = whole_bell(&species, 20, 60.0);
+            println!(
+                "{} at grid {}: {crumpled} of {samples} samples crumpled, {recoveries} recoveries",
+                species.name, species.grid_resolution
+            );
+            assert_eq!(
+                (crumpled, recoveries),
+                (0, 0),
+                "{} at grid {}",
+                species.name,
+                species.grid_resolution
+            );
+        }
+    }
+}
+
 /// Distance in 20 s, diameters, at each of `frequencies` (the paper's Fig. 5 measure).
 fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
     std::thread::scope(|s| {

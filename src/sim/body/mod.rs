@@ -25,6 +25,7 @@ pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
+use crate::sim::kernel;
 use crate::species::Species;
 use elements::{Constraint, constraints, wrap_angle};
 use glam::Vec2;
@@ -68,12 +69,18 @@ pub struct Body {
 
 impl Body {
     /// Builds the rest configuration with the aperture centre at `origin`, for fluid cells
-    /// of size `h` (points sit about half a cell apart, as immersed boundaries need): the
-    /// paper's Fig. 4, part by part (see `network`). In the axisymmetric geometry the
+    /// of size `h`: the paper's Fig. 4, part by part (see `network`).
+    ///
+    /// Points sit about half a kernel cell apart (half a cell where the kernel spans its own
+    /// three cells, as immersed boundaries need). A kernel stretched to the bell's
+    /// `boundary_width` cannot see finer detail, so on a finer grid the bell keeps the
+    /// points it had: refining the grid refines the water around one body instead of
+    /// adding wrinkles the water cannot hold straight (they crossed the outline at 2·G). In the axisymmetric geometry the
     /// axis is the vertical through `origin`, every point a ring about it, and the
     /// muscle a hoop of each ring.
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
-        let outline = rest_outline(species, h);
+        let width = species.boundary_width * species.diameter;
+        let outline = rest_outline(species, h * kernel::stretch(width, h));
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();
         let depth = Depth::new(species, origin.x, h);

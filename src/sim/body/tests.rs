@@ -159,3 +159,22 @@ fn a_fringe_of_no_tentacles_hangs_no_chains() {
     );
     assert_eq!(b.points.len(), b.bell.len());
 }
+
+#[test]
+fn points_are_spaced_by_the_kernel_not_by_a_finer_grid() {
+    // The default bell's boundary is 0.3 D = 12 mm wide: three cells of 4 mm.
+    let s = Species::aurelia();
+    let at = |h: f32| {
+        let b = Body::new(&s, Vec2::new(0.2, 0.2), h);
+        (b.bell.len(), b.points.len())
+    };
+    let kernel_cell = 0.3 * s.diameter / 3.0;
+    let (bell, all) = at(kernel_cell);
+    // Finer cells under the same kernel: the same body.
+    for finer in [1.5, 2.0, 3.0] {
+        assert_eq!(at(kernel_cell / finer), (bell, all), "cells {finer}× finer");
+    }
+    // Coarser cells than the kernel's: about half a cell apart, so fewer points.
+    let (coarse, _) = at(2.0 * kernel_cell);
+    assert!(coarse < bell * 2 / 3, "{coarse} points against {bell}");
+}

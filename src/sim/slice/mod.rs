@@ -12,6 +12,7 @@ use super::clock::FixedClock;
 use super::coupling::Coupling;
 use super::escape::Escape;
 use super::fluid::Fluid;
+use super::kernel;
 use super::muscle::MuscleDrive;
 use super::oral_arms::OralArms;
 use crate::species::{SliceGeometry, Species, SpeciesError};
@@ -192,8 +193,10 @@ impl SliceSim {
     /// How many times three cells the immersed-boundary kernel spans: the species'
     /// `boundary_width`, never less than three cells.
     pub fn kernel_stretch(species: &Species) -> f32 {
-        let width = species.boundary_width * species.diameter;
-        (width / (3.0 * species.cell_size())).max(1.0)
+        kernel::stretch(
+            species.boundary_width * species.diameter,
+            species.cell_size(),
+        )
     }
 
     /// The slice's fixed step for `species`, s: a whole fraction of the contraction period.
