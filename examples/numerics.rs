@@ -6,11 +6,12 @@
 //! *spread* of a set of runs is (max − min) / mean; *cv* is the cycle-to-cycle coefficient
 //! of variation over the same cycles.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|all] [--from 10] [--to 30]`
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|all] [--from 10] [--to 30]`
 
 #[path = "common/species.rs"]
 mod common;
 
+use bevy_jellyfish::sim::clock::FixedClock;
 use bevy_jellyfish::{SliceSim, Species};
 use common::shipped_species;
 use std::sync::Mutex;
@@ -39,7 +40,17 @@ impl Run {
 /// Swims `species` with `advance(frame)` calls and records the distance at each cycle's
 /// first step (exactly phase 0, whatever the frame rate).
 fn swim(species: &Species, frame: f32, from: u32, to: u32) -> Run {
+    swim_in_steps(species, 1, frame, from, to)
+}
+
+/// [`swim`] with `finer` times the species' fixed steps per cycle (a time-step convergence
+/// check: a shipped slice always takes its species' own steps).
+fn swim_in_steps(species: &Species, finer: u32, frame: f32, from: u32, to: u32) -> Run {
     let mut sim = SliceSim::new(species).expect("valid species");
+    if finer > 1 {
+        let steps = SliceSim::steps_per_cycle(species) * finer;
+        sim.set_clock(FixedClock::new(species.period(), steps));
+    }
     let mut boundaries = vec![0.0f64];
     let clock = Instant::now();
     let mut frames = 0u64;
@@ -209,6 +220,27 @@ fn convergence(species: &[Species], from: u32, to: u32) {
             "\nG against 1.5·G: {:+.1}%\n",
             100.0 * (at(1.5) / at(1.0) - 1.0)
         );
+    }
+}
+
+fn timestep(species: &[Species], from: u32, to: u32) {
+    println!(
+        "\n### Time step: swim per cycle (cycles {from}–{to}) with the species' fixed step, \
+         and 2, 4 and 8 times finer (60 Hz frames)\n"
+    );
+    println!("| species (grid, steps per cycle) | 1× | 2× | 4× | 8× | spread |");
+    println!("|---|---|---|---|---|---|");
+    for s in species {
+        let runs = parallel(vec![1, 2, 4, 8], |&k| {
+            swim_in_steps(s, k, 1.0 / 60.0, from, to)
+        });
+        let label = format!(
+            "{} ({}, {})",
+            s.name,
+            s.grid_resolution,
+            SliceSim::steps_per_cycle(s)
+        );
+        row(&label, &runs);
     }
 }
 
@@ -404,6 +436,9 @@ fn main() {
                 groups.join(" ")
             );
         }
+    }
+    if matches!(which, "timestep") {
+        timestep(&species, from, to);
     }
     if matches!(which, "calibration") {
         calibration(&default[0]);
