@@ -26,15 +26,7 @@ impl Fluid {
     /// [`Fluid::speed_max`]; two plain reductions (no averaging, no square roots per
     /// cell), cheap enough for the step's Courant check. NaN if any velocity is NaN.
     pub(crate) fn speed_bound(&self) -> f32 {
-        let largest = |field: &[f32]| {
-            let (mut max, mut nan) = (0.0f32, false);
-            for x in field {
-                max = max.max(x.abs());
-                nan |= x.is_nan();
-            }
-            if nan { f32::NAN } else { max }
-        };
-        let (u, v) = (largest(&self.u), largest(&self.v));
+        let (u, v) = (largest_magnitude(&self.u), largest_magnitude(&self.v));
         (u * u + v * v).sqrt()
     }
 
@@ -59,5 +51,47 @@ impl Fluid {
     /// Whether every velocity is finite.
     pub fn is_finite(&self) -> bool {
         self.u.iter().chain(&self.v).all(|x| x.is_finite())
+    }
+}
+
+/// max |x| over `field`, NaN if any `x` is NaN: on the bit patterns with the sign
+/// cleared, which order as the magnitudes do (every NaN above infinity), so the reduction
+/// is a plain integer maximum that vectorises, where `f32::max` (which skips NaN) does not.
+fn largest_magnitude(field: &[f32]) -> f32 {
+    const LANES: usize = 8;
+    let magnitude = |x: &f32| x.to_bits() & 0x7fff_ffff;
+    let mut lanes = [0u32; LANES];
+    let chunks = field.chunks_exact(LANES);
+    let rest = chunks.remainder().iter().map(magnitude).max().unwrap_or(0);
+    for chunk in chunks {
+        for (lane, x) in lanes.iter_mut().zip(chunk) {
+            *lane = (*lane).max(magnitude(x));
+        }
+    }
+    let bits = lanes.into_iter().fold(rest, u32::max);
+    if bits > f32::INFINITY.to_bits() {
+        f32::NAN
+    } else {
+        f32::from_bits(bits)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::largest_magnitude;
+
+    #[test]
+    fn the_largest_magnitude_is_exact_and_sees_nan_and_infinity() {
+        let mut field: Vec<f32> = (0..203)
+            .map(|k| ((k * 37) % 101) as f32 * 0.013 - 0.6)
+            .collect();
+        let plain = field.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        assert_eq!(largest_magnitude(&field).to_bits(), plain.to_bits());
+        assert_eq!(largest_magnitude(&[]), 0.0);
+        assert_eq!(largest_magnitude(&[-0.0, 0.0]).to_bits(), 0.0f32.to_bits());
+        field[201] = -f32::INFINITY;
+        assert_eq!(largest_magnitude(&field), f32::INFINITY);
+        field[3] = -f32::NAN;
+        assert!(largest_magnitude(&field).is_nan());
     }
 }
