@@ -29,39 +29,34 @@ impl Fluid {
         }
     }
 
-    /// Relaxes the velocity in the absorbing layer towards the stream.
+    /// Relaxes the velocity in the absorbing layer towards the stream (implicit Euler:
+    /// stable for any rate and step). Only the rows within the layer: elsewhere there is
+    /// nothing to relax, and a planar slice's `n` columns or an axisymmetric slice's
+    /// solved half (the projection mirrors the rest).
     pub(crate) fn absorb(&mut self, dt: f32) {
-        if let Some(solved) = self.rings().map(|r| r.solved) {
-            return self.absorb_half(dt, solved);
-        }
-        // Implicit Euler: stable for any rate and step.
-        for (u, s) in self.u.iter_mut().zip(&self.sponge_u) {
-            *u /= 1.0 + s * dt;
-        }
+        let n = self.n;
+        let columns = self.rings().map_or(n, |r| r.solved);
         let stream = self.stream;
-        for (v, s) in self.v.iter_mut().zip(&self.sponge_v) {
-            *v = stream + (*v - stream) / (1.0 + s * dt);
-        }
-    }
-
-    /// [`Fluid::absorb`] over the solved half of an axisymmetric slice (`columns` from
-    /// the left wall, and the `u` face past the axis), rows within the layer only.
-    fn absorb_half(&mut self, dt: f32, columns: usize) {
-        let (n, stream) = (self.n, self.stream);
-        for j in 0..n {
-            let rate = self.sponge_u[j * (n + 1)];
-            if rate > 0.0 {
-                let damp = 1.0 / (1.0 + rate * dt);
-                self.u[j * (n + 1)..][..columns + 1]
+        for (u, rate) in self
+            .u
+            .chunks_exact_mut(n + 1)
+            .zip(self.sponge_u.chunks_exact(n + 1))
+        {
+            if rate[0] > 0.0 {
+                let damp = 1.0 / (1.0 + rate[0] * dt);
+                u[..(columns + 1).min(n + 1)]
                     .iter_mut()
                     .for_each(|u| *u *= damp);
             }
         }
-        for j in 0..=n {
-            let rate = self.sponge_v[j * n];
-            if rate > 0.0 {
-                let damp = 1.0 / (1.0 + rate * dt);
-                self.v[j * n..][..columns]
+        for (v, rate) in self
+            .v
+            .chunks_exact_mut(n)
+            .zip(self.sponge_v.chunks_exact(n))
+        {
+            if rate[0] > 0.0 {
+                let damp = 1.0 / (1.0 + rate[0] * dt);
+                v[..columns]
                     .iter_mut()
                     .for_each(|v| *v = stream + (*v - stream) * damp);
             }
