@@ -466,7 +466,7 @@ fn the_default_swims_like_aurelia_and_staggering_pays(geometry: SliceGeometry) {
 }
 
 in_both_geometries!(#[ignore = "long: 4 grids × 30 strokes"] fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell);
-/// The moon jelly only: Sarsia's planar stroke still spreads 13.5% over G..G+3, and
+/// The moon jelly only: Sarsia's planar stroke still spreads 15% over G..G+3, and
 /// Aequorea's axisymmetric one is still building up over cycles 10–30 (`docs/numerics.md`).
 fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell(geometry: SliceGeometry) {
     let base = aurelia(geometry);
