@@ -61,12 +61,6 @@ impl Stencil {
     }
 }
 
-/// How many times three cells of size `h` the kernel spans for a bell whose boundary is
-/// `width` metres wide: never less than once (the kernel's own three cells).
-pub(crate) fn stretch(width: f32, h: f32) -> f32 {
-    (width / (3.0 * h)).max(1.0)
-}
-
 /// Roma, Peskin & Berger's three-point kernel at `r` cells (support |r| < 3/2).
 fn roma(r: f32) -> f32 {
     let r = r.abs();

@@ -9,6 +9,14 @@ impl Species {
         self.domain_size() / self.grid_resolution as f32
     }
 
+    /// How many times three cells of `h` metres the immersed-boundary kernel spans: the
+    /// bell's `boundary_width`, never less than the kernel's own three cells. The body's
+    /// points sit half a stretched cell apart, so a grid finer than the band refines the
+    /// water around the same body.
+    pub fn kernel_stretch_at(&self, h: f32) -> f32 {
+        (self.boundary_width * self.diameter / (3.0 * h)).max(1.0)
+    }
+
     /// Side of the square fluid domain, m.
     pub fn domain_size(&self) -> f32 {
         self.domain_diameters * self.diameter

@@ -320,7 +320,8 @@ pub fn oral_tubes(s: &Species) -> usize {
 /// of a step (its cells and its body points) on the reference machine.
 pub fn simulation_cost(s: &Species) -> f64 {
     let cells = (s.grid_resolution as f64).powi(2);
-    let spacing = 0.5 * s.cell_size() as f64;
+    // Body points half a kernel cell apart (`Species::kernel_stretch_at`).
+    let spacing = 0.5 * (s.cell_size() * s.kernel_stretch_at(s.cell_size())) as f64;
     // Half an ellipse's perimeter (Ramanujan's approximation) and two tentacle chains.
     let (a, b) = (0.5 * s.diameter as f64, s.height as f64);
     let half_perimeter =

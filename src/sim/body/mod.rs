@@ -25,7 +25,6 @@ pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
-use crate::sim::kernel;
 use crate::species::Species;
 use elements::{Constraint, constraints, wrap_angle};
 use glam::Vec2;
@@ -79,8 +78,7 @@ impl Body {
     /// axis is the vertical through `origin`, every point a ring about it, and the
     /// muscle a hoop of each ring.
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
-        let width = species.boundary_width * species.diameter;
-        let outline = rest_outline(species, h * kernel::stretch(width, h));
+        let outline = rest_outline(species, h * species.kernel_stretch_at(h));
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();
         let depth = Depth::new(species, origin.x, h);

@@ -12,7 +12,6 @@ use super::clock::FixedClock;
 use super::coupling::Coupling;
 use super::escape::Escape;
 use super::fluid::Fluid;
-use super::kernel;
 use super::muscle::MuscleDrive;
 use super::oral_arms::OralArms;
 use crate::species::{SliceGeometry, Species, SpeciesError};
@@ -193,10 +192,7 @@ impl SliceSim {
     /// How many times three cells the immersed-boundary kernel spans: the species'
     /// `boundary_width`, never less than three cells.
     pub fn kernel_stretch(species: &Species) -> f32 {
-        kernel::stretch(
-            species.boundary_width * species.diameter,
-            species.cell_size(),
-        )
+        species.kernel_stretch_at(species.cell_size())
     }
 
     /// The slice's fixed step for `species`, s: a whole fraction of the contraction period.
