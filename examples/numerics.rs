@@ -413,7 +413,7 @@ fn main() {
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
         .map(|s| with_overrides(s, &overrides))
         .collect();
-    let default = vec![with_overrides(Species::aurelia(), &overrides)];
+    let default = with_overrides(Species::aurelia(), &overrides);
     if matches!(which, "frames" | "all") {
         frames(&species, from, to);
     }
@@ -441,7 +441,7 @@ fn main() {
         timestep(&species, from, to);
     }
     if matches!(which, "calibration") {
-        calibration(&default[0]);
+        calibration(&default);
     }
     if matches!(which, "crumples") {
         crumples(&species, flag("--cycles", 300));
