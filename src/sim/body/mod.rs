@@ -74,9 +74,10 @@ impl Body {
     /// three cells, as immersed boundaries need). A kernel stretched to the bell's
     /// `boundary_width` cannot see finer detail, so on a finer grid the bell keeps the
     /// points it had: refining the grid refines the water around one body instead of
-    /// adding wrinkles the water cannot hold straight (they crossed the outline at 2·G). In the axisymmetric geometry the
-    /// axis is the vertical through `origin`, every point a ring about it, and the
-    /// muscle a hoop of each ring.
+    /// adding wrinkles the water cannot hold straight (they crossed the outline at 2·G).
+    ///
+    /// In the axisymmetric geometry the axis is the vertical through `origin`, every point
+    /// a ring about it, and the muscle a hoop of each ring.
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
         let outline = rest_outline(species, h * species.kernel_stretch_at(h));
         let bell_len = outline.len();
