@@ -29,13 +29,17 @@ pub(super) fn cubic_sample(field: &[f32], nx: usize, ny: usize, x: f32, y: f32) 
     let (wx, wy) = (weights(fx), weights(fy));
     let col = |d: usize| (i + d).saturating_sub(1).min(nx - 1);
     let cols = [col(0), col(1), col(2), col(3)];
+    let rows: [&[f32]; 4] =
+        std::array::from_fn(|b| &field[(j + b).saturating_sub(1).min(ny - 1) * nx..][..nx]);
     let mut value = 0.0;
-    for (b, w) in wy.iter().enumerate() {
-        let r = &field[(j + b).saturating_sub(1).min(ny - 1) * nx..][..nx];
+    for (r, w) in rows.iter().zip(&wy) {
         value +=
             w * (wx[0] * r[cols[0]] + wx[1] * r[cols[1]] + wx[2] * r[cols[2]] + wx[3] * r[cols[3]]);
     }
-    let [a0, a1, b0, b1, _, _] = corners(field, nx, ny, x, y);
+    // The four nearest values are the middle of the sixteen (`locate` keeps i + 1 and j + 1
+    // inside the field, so neither is clamped).
+    let (a, b) = (rows[1], rows[2]);
+    let (a0, a1, b0, b1) = (a[cols[1]], a[cols[2]], b[cols[1]], b[cols[2]]);
     let lo = a0.min(a1).min(b0).min(b1);
     let hi = a0.max(a1).max(b0).max(b1);
     // max-then-min, not clamp: NaN must reach the health check, not panic.
