@@ -12,6 +12,7 @@ fn every_frame_of_a_simulated_stroke_meshes_cleanly() {
     let mut sim = SliceSim::new(&species).unwrap();
     let mut mesh = JellyMesh::new();
     let mut first = None;
+    let mut moved = 0.0f32;
     let frames = (species.period() * 30.0) as usize;
     for frame in 0..frames {
         sim.advance(1.0 / 30.0);
@@ -24,15 +25,15 @@ fn every_frame_of_a_simulated_stroke_meshes_cleanly() {
         );
         assert!(finite(&mesh.tentacles.positions), "frame {frame}");
         assert!(mesh.umbrella.vertex_count() > 0 && mesh.tentacles.vertex_count() > 0);
-        first.get_or_insert_with(|| mesh.umbrella.positions.clone());
+        // The bell changes shape over a stroke (and is back near its rest at the end).
+        let first = first.get_or_insert_with(|| mesh.umbrella.positions.clone());
+        let furthest = first
+            .iter()
+            .zip(&mesh.umbrella.positions)
+            .map(|(a, b)| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0f32, f32::max))
+            .fold(0.0f32, f32::max);
+        moved = moved.max(furthest);
     }
-    // The bell changes shape over a stroke.
-    let moved = first
-        .unwrap()
-        .iter()
-        .zip(&mesh.umbrella.positions)
-        .map(|(a, b)| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0f32, f32::max))
-        .fold(0.0f32, f32::max);
     assert!(
         moved > 0.1 * species.diameter,
         "largest vertex move {moved} m"

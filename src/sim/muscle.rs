@@ -74,7 +74,7 @@ mod tests {
     use super::*;
 
     fn drive(stagger: f32) -> MuscleDrive {
-        let mut s = Species::aurelia();
+        let mut s = Species::paper();
         s.expansion_stagger = stagger;
         MuscleDrive::new(&s)
     }

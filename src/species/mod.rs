@@ -1,10 +1,11 @@
 //! Species: every parameter of a jellyfish kind, in SI units, with validation.
 //!
-//! The defaults of [`Species::aurelia`] are the paper's Fig. 12 (Rudolf & Mould 2009),
-//! read in SI units as `docs/physics.md` explains. Everything else a simulation or a
+//! The defaults are [`Species::aurelia`], the moon jelly shaped and timed from records of
+//! the animal (`docs/physics.md`, section 5); [`Species::paper`] is the paper's Fig. 12
+//! model (Rudolf & Mould 2009), read in SI units as `docs/physics.md` explains. Everything else a simulation or a
 //! renderer needs lives here too, so that one RON file describes one species.
 //!
-//! - `presets`: the shipped species and the paper's variations and numerics;
+//! - `presets`: the shipped species, the paper's model, variations and numerics;
 //! - `derived`: what follows from the fields (cell size, period, the fixed step...);
 //! - `file`: RON text in and out, validated against [`limits`];
 //! - `choices`: the enumerated fields (gonad shape, slice geometry, advection, kernel);

@@ -27,8 +27,8 @@ fn an_unknown_field_is_an_error_naming_it_and_where() {
 use super::*;
 
 #[test]
-fn aurelia_is_valid_and_matches_the_paper() {
-    let s = Species::aurelia();
+fn the_paper_model_is_the_papers_fig_12() {
+    let s = Species::paper();
     s.validate().unwrap();
     assert_eq!(s.contraction_frequency, 0.7);
     assert_eq!(s.diameter, 0.040);
@@ -41,11 +41,31 @@ fn aurelia_is_valid_and_matches_the_paper() {
     assert_eq!((s.grid_resolution, s.domain_diameters), (60, 6.0));
     assert!((s.cell_size() - 0.004).abs() < 1e-7);
     // The paper's own numerics stay one call away.
-    let paper = Species::aurelia().with_paper_numerics();
+    let paper = Species::paper().with_paper_numerics();
     paper.validate().unwrap();
     assert_eq!((paper.grid_resolution, paper.domain_diameters), (100, 10.0));
     assert_eq!(paper.kernel, Kernel::Bilinear);
     assert!((paper.cell_size() - 0.004).abs() < 1e-7);
+}
+
+#[test]
+fn the_moon_jelly_is_a_saucer_timed_as_the_animal() {
+    let s = Species::aurelia();
+    s.validate().unwrap();
+    // Dabiri's 15.5 cm animal (docs/physics.md section 5): 0.26 D from apex to margin at
+    // rest, of which the apex mesoglea 0.125 D, 0.80 s of contraction in a 2.87 s cycle.
+    assert!(((s.height + s.thickness) / s.diameter - 0.26).abs() < 0.005);
+    assert!((s.thickness / s.diameter - 0.125).abs() < 0.005);
+    assert!((s.contraction_duty - 0.80 / 2.87).abs() < 0.005);
+    assert_eq!(s.relaxation_span, 1.0);
+    assert_eq!(s.slice_geometry, SliceGeometry::Axisymmetric);
+    // Fifteen cells per diameter on the paper's grid.
+    assert!((s.diameter / s.cell_size() - 15.0).abs() < 1e-3);
+    // The paper's model keeps its own plate: the same bending law, a thinner wall.
+    let paper = Species::paper();
+    let plate = |s: &Species| s.elastic_modulus * s.thickness.powi(3) / 12.0 / 0.002;
+    assert!((s.angular_stiffness / plate(&s) - 1.0).abs() < 1e-5);
+    assert!((paper.angular_stiffness / plate(&paper) - 1.0).abs() < 1e-5);
 }
 
 #[test]
@@ -127,7 +147,11 @@ fn the_slice_geometry_reads_and_writes_and_a_wrong_one_is_named() {
     assert_eq!(s.slice_geometry, SliceGeometry::Axisymmetric);
     let back = Species::from_ron(&s.to_ron().unwrap()).unwrap();
     assert_eq!(back.slice_geometry, SliceGeometry::Axisymmetric);
-    assert_eq!(Species::aurelia().slice_geometry, SliceGeometry::Planar);
+    assert_eq!(Species::paper().slice_geometry, SliceGeometry::Planar);
+    assert_eq!(
+        Species::aurelia().slice_geometry,
+        SliceGeometry::Axisymmetric
+    );
     let err = Species::from_ron("(slice_geometry: Spherical)").unwrap_err();
     let msg = err.to_string();
     println!("{msg}");

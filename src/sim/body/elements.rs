@@ -1,5 +1,6 @@
 //! The elastic elements of the bell: Hookean springs along the subumbrella and the
-//! tentacles, angular springs (hinges) holding its curvature, and muscle springs across it.
+//! tentacles, angular springs (hinges) holding its curvature, the hoop bending of an r–z
+//! bell's rings, and muscle springs across it.
 //! Each is written as scalar constraints `C(x)` with energy `½·k·C²`, the form the
 //! implicit solve linearises.
 
@@ -50,6 +51,24 @@ pub(crate) struct Hinge {
     pub(crate) stiffness: f32,
     /// Bending (rad from rest) beyond which the hinge stiffens [`HINGE_STIFFENING`]-fold.
     pub(crate) bend_limit: f32,
+}
+
+/// The hoop bending of one segment of an axisymmetric bell: a shell of revolution bends
+/// around its axis too, by κ_θ = sin ψ / r (ψ the meridian's slope). Its energy per radian,
+/// ½·D·Δs·r·(Δκ_θ)², is ½·k·(Δ sin ψ)² with k = D·Δs / r. The hinges hold only the
+/// meridian's own curvature, whose stiffness per radian vanishes at the axis; without this
+/// the apex of a flat bell folded into a cone (a cone's hoop curvature is unbounded there)
+/// and a bell buckled under its own stroke above 90 mm.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct HoopBend {
+    /// The segment's first point.
+    pub(crate) a: usize,
+    /// Its second.
+    pub(crate) b: usize,
+    /// sin ψ at rest, the segment's slope from a to b.
+    pub(crate) rest: f32,
+    /// N·m per radian of rings: bending rigidity × segment length / radius.
+    pub(crate) stiffness: f32,
 }
 
 /// A muscle spring across the bell; its rest length follows the contraction function.
@@ -128,6 +147,20 @@ pub(super) fn hinge(points: &[Vec2], a: usize, b: usize, c: usize, stiffness: f3
         stiffness,
         bend_limit: BEND_LIMIT,
     }
+}
+
+pub(super) fn hoop_bend(points: &[Vec2], a: usize, b: usize, stiffness: f32) -> HoopBend {
+    HoopBend {
+        a,
+        b,
+        rest: slope_sine(points[b] - points[a]),
+        stiffness,
+    }
+}
+
+/// sin ψ of a segment `d`: its rise over its length.
+fn slope_sine(d: Vec2) -> f32 {
+    d.y / d.length().max(1e-12)
 }
 
 fn signed_angle(e1: Vec2, e2: Vec2) -> f32 {
@@ -232,5 +265,21 @@ pub(super) fn constraints<'a>(
         stiffen_beyond(&mut c, h.bend_limit, HINGE_STIFFENING);
         c
     });
-    springs.chain(muscles).chain(hinges)
+    let hoop_bends = body.hoop_bends.iter().map(move |h| {
+        let d = x[h.b] - x[h.a];
+        let len = d.length().max(1e-12);
+        // ∂(d.y/|d|)/∂d = d.x·d⊥/|d|³.
+        let grad = d.perp() * (d.x / (len * len * len));
+        let change = slope_sine(d) - h.rest;
+        Constraint {
+            idx: [h.a, h.b, h.b],
+            grad: [-grad, grad, Vec2::ZERO],
+            count: 2,
+            stiffness: h.stiffness,
+            value: change,
+            raw: change,
+            change: 0.0,
+        }
+    });
+    springs.chain(muscles).chain(hinges).chain(hoop_bends)
 }

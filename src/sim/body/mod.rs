@@ -19,7 +19,7 @@ mod rest_shape;
 mod tentacle;
 
 pub(crate) use depth::Depth;
-pub(crate) use elements::{Hinge, Muscle, Spring};
+pub(crate) use elements::{Hinge, HoopBend, Muscle, Spring};
 pub use outline::{Outline, contains, outward_normals};
 pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
@@ -30,7 +30,7 @@ use elements::{Constraint, constraints, wrap_angle};
 use glam::Vec2;
 use implicit::Solver;
 use network::{
-    Tentacles, circumferential_muscles, hang_tentacles, mesoglea_hinges, ring_hoops,
+    Tentacles, circumferential_muscles, hang_tentacles, hoop_bending, mesoglea_hinges, ring_hoops,
     subumbrellar_springs,
 };
 use std::ops::Range;
@@ -50,6 +50,8 @@ pub struct Body {
     pub(crate) springs: Vec<Spring>,
     /// Angular springs: the wall's bending stiffness.
     pub(crate) hinges: Vec<Hinge>,
+    /// The hoop bending of an r–z bell's rings (none in the plane).
+    pub(crate) hoop_bends: Vec<HoopBend>,
     /// Muscle springs across the bell, driven by the contraction function.
     pub(crate) muscles: Vec<Muscle>,
     /// The mesoglea's Kelvin–Voigt time τ (viscosity over modulus), s: every element
@@ -86,6 +88,7 @@ impl Body {
         let mut points: Vec<Vec2> = outline.iter().map(|p| *p + origin).collect();
         let mut springs = subumbrellar_springs(species, &points, depth);
         let mut hinges = mesoglea_hinges(species, &points, spacing, depth);
+        let hoop_bends = hoop_bending(species, &points, spacing, depth);
         let muscles = if depth.rings() {
             ring_hoops(species, &points, spacing, &mut springs)
         } else {
@@ -114,6 +117,7 @@ impl Body {
             tentacles,
             springs,
             hinges,
+            hoop_bends,
             muscles,
             damping_time: species.mesoglea_damping_time(),
             tentacle_drag: vec![drag_model.at(0.0); scratch.len()],

@@ -5,7 +5,8 @@
 
 use super::depth::Depth;
 use super::elements::{
-    Hinge, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge, muscle, spring,
+    Hinge, HoopBend, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge,
+    hoop_bend, muscle, spring,
 };
 use super::rest_shape::mesoglea_thickness;
 use super::tentacle::tentacle_bending;
@@ -61,6 +62,31 @@ pub(super) fn mesoglea_hinges(
                 i + 1,
                 species.angular_stiffness * t.powi(3) * hinge_scale * width,
             )
+        })
+        .collect()
+}
+
+/// The hoop bending of an axisymmetric bell's rings, segment by segment (none in the
+/// plane, which has no hoop curvature): the rigidity is the hinges' plate law at the
+/// segment's thickness, over its ring's radius (floored where the kernel smears the apex).
+pub(super) fn hoop_bending(
+    species: &Species,
+    subumbrella: &[Vec2],
+    spacing: f32,
+    depth: Depth,
+) -> Vec<HoopBend> {
+    if !depth.rings() {
+        return Vec::new();
+    }
+    let m = subumbrella.len() / 2;
+    (0..subumbrella.len() - 1)
+        .map(|i| {
+            let s = arc_fraction(i, m) * 0.5 + arc_fraction(i + 1, m) * 0.5;
+            let t = mesoglea_thickness(species, s) / species.thickness;
+            // E·ϑ³/12 at this thickness: `angular_stiffness` is it per 2 mm of hinge.
+            let rigidity = species.angular_stiffness * t.powi(3) * REFERENCE_HINGE_LENGTH;
+            let radius = depth.at(0.5 * (subumbrella[i] + subumbrella[i + 1]));
+            hoop_bend(subumbrella, i, i + 1, rigidity * spacing / radius)
         })
         .collect()
 }

@@ -2,8 +2,10 @@
 
 use super::*;
 
+/// The paper's planar bell, where every element's forces balance (rings in r–z feel
+/// their hoops as a net radial force).
 fn body() -> Body {
-    Body::new(&Species::aurelia(), Vec2::new(0.2, 0.2), 0.004)
+    Body::new(&Species::paper(), Vec2::new(0.2, 0.2), 0.004)
 }
 
 #[test]
@@ -162,8 +164,8 @@ fn a_fringe_of_no_tentacles_hangs_no_chains() {
 
 #[test]
 fn points_are_spaced_by_the_kernel_not_by_a_finer_grid() {
-    // The default bell's boundary is 0.3 D = 12 mm wide: three cells of 4 mm.
-    let s = Species::aurelia();
+    // The paper's bell's boundary is 0.3 D = 12 mm wide: three cells of 4 mm.
+    let s = Species::paper();
     let at = |h: f32| {
         let b = Body::new(&s, Vec2::new(0.2, 0.2), h);
         (b.bell.len(), b.points.len())
@@ -177,4 +179,61 @@ fn points_are_spaced_by_the_kernel_not_by_a_finer_grid() {
     // Coarser cells than the kernel's: about half a cell apart, so fewer points.
     let (coarse, _) = at(2.0 * kernel_cell);
     assert!(coarse < bell * 2 / 3, "{coarse} points against {bell}");
+}
+
+#[test]
+fn hoop_bending_is_the_gradient_of_its_energy_and_stiffest_near_the_axis() {
+    // A shell of revolution bends around its axis by sin ψ / r: energy ½·D·Δs/r·(Δ sin ψ)²
+    // per radian, so a segment's stiffness falls as 1/r away from the axis.
+    let s = Species::aurelia();
+    let mut b = Body::new(&s, Vec2::new(0.2, 0.2), s.cell_size());
+    let apex = b.apex_index();
+    let bends = b.hoop_bends.clone();
+    assert_eq!(bends.len(), b.bell.len() - 1);
+    let stiffness_at = |k: usize| bends[k].stiffness;
+    assert!(stiffness_at(apex) > 3.0 * stiffness_at(apex + b.bell.len() / 4));
+    let energy = |b: &Body| -> f64 {
+        b.hoop_bends
+            .iter()
+            .map(|h| {
+                let d = (b.points[h.b] - b.points[h.a]).as_dvec2();
+                let change = d.y / d.length() - h.rest as f64;
+                0.5 * h.stiffness as f64 * change * change
+            })
+            .sum()
+    };
+    // At rest, and moved along the axis, it holds no energy (to rounding).
+    assert!(energy(&b) < 1e-18);
+    for p in &mut b.points {
+        p.y += 0.003;
+    }
+    assert!(energy(&b) < 1e-18);
+    // Bent by a tenth of the points' spacing.
+    for (i, p) in b.points.iter_mut().enumerate() {
+        *p += Vec2::new((i as f32 * 1.3).sin(), (i as f32 * 0.7).cos()) * 1.5e-4;
+    }
+    // The force each hoop bend adds is minus the gradient of its energy.
+    b.springs.clear();
+    b.hinges.clear();
+    b.muscles.clear();
+    let mut f = vec![Vec2::ZERO; b.points.len()];
+    b.forces(&mut f);
+    let e = 1e-5;
+    for i in [apex, apex + 3, 2, 1] {
+        for axis in [Vec2::X, Vec2::Y] {
+            let mut plus = b.clone();
+            plus.points[i] += e * axis;
+            let mut minus = b.clone();
+            minus.points[i] -= e * axis;
+            let numeric = -(energy(&plus) - energy(&minus)) / (2.0 * e as f64);
+            let analytic = f[i].dot(axis) as f64;
+            assert!(
+                (numeric - analytic).abs() <= 0.01 * analytic.abs().max(1e-6),
+                "point {i} {axis}: {analytic} against {numeric}"
+            );
+        }
+    }
+    // The plane has no hoop curvature.
+    let planar = Body::new(&Species::paper(), Vec2::new(0.2, 0.2), 0.004);
+    assert!(planar.hoop_bends.is_empty());
 }
