@@ -1,0 +1,345 @@
+//! Each shipped species started from rest, beside the records of its animal: the speed and
+//! distance of its first strokes, and the moon jelly's shape through one stroke under way
+//! against the 15.5 cm *Aurelia* Dabiri recorded (`docs/records/`), at the model's own
+//! size and scaled to the recorded animal's. The paper's Fig. 12 model runs beside them.
+//!
+//! Prints, per species: distance per stroke from rest and under way, the slowest speed
+//! while the bell refills once under way (negative: it drifts backwards), the contracted
+//! margin and height; then the moon jelly at other sizes, every length scaled and its pulse
+//! rate set to its animal's at that size. Writes `kinematics.csv` and `kinematics.png`
+//! into `--out` (default `docs/`).
+//!
+//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20] [--out docs]`
+
+#[path = "common/species.rs"]
+mod common;
+
+#[path = "sweep/plot.rs"]
+mod plot;
+
+use bevy_jellyfish::{SliceSim, Species};
+use common::shipped_species;
+use plot::{Chart, Series};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// One sample after a fixed step; lengths over the rest diameter.
+#[derive(Clone, Copy)]
+struct Sample {
+    time: f32,
+    /// Cycles since the start (time × pulse rate).
+    cycles: f32,
+    distance: f32,
+    /// Over the last step, diameters per second.
+    speed: f32,
+    margin: f32,
+    height: f32,
+}
+
+/// The margin's width and the bell's height from apex to margin (the subumbrella's plus
+/// the apex's mesoglea), m.
+fn shape(sim: &SliceSim) -> (f32, f32) {
+    let b = sim.bell_points();
+    let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
+    let margin = (right - left).length();
+    let height = apex.y - 0.5 * (left.y + right.y) + sim.species().thickness;
+    (margin, height)
+}
+
+/// `strokes` strokes from rest, a sample after every fixed step. A slice that had to
+/// recover from a blow-up or a crossed outline is said on stderr.
+fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
+    let mut sim = SliceSim::new(species).expect("valid species");
+    let d = species.diameter;
+    let mut samples = Vec::new();
+    let (mut time, mut distance) = (0.0f32, 0.0f32);
+    let end = strokes as f32 * species.period();
+    while sim.time() < end {
+        sim.advance_with(1.0 / 60.0, |sim| {
+            let (margin, height) = shape(sim);
+            let x = sim.swim_distance() / d;
+            let dt = sim.time() - time;
+            samples.push(Sample {
+                time: sim.time(),
+                cycles: sim.time() * species.contraction_frequency,
+                distance: x,
+                speed: if dt > 0.0 { (x - distance) / dt } else { 0.0 },
+                margin: margin / d,
+                height: height / d,
+            });
+            time = sim.time();
+            distance = x;
+        });
+    }
+    if sim.recoveries() > 0 {
+        eprintln!("{}: {} recoveries", species.name, sim.recoveries());
+    }
+    samples
+}
+
+/// Distance per stroke over each whole cycle.
+fn per_stroke(samples: &[Sample]) -> Vec<f32> {
+    let mut starts = vec![0.0f32];
+    for pair in samples.windows(2) {
+        if pair[1].cycles.floor() > pair[0].cycles.floor() {
+            starts.push(pair[1].distance);
+        }
+    }
+    starts.windows(2).map(|w| w[1] - w[0]).collect()
+}
+
+/// The samples of cycle `k`, phase 0..1.
+fn cycle(samples: &[Sample], k: u32) -> impl Iterator<Item = (f32, &Sample)> {
+    samples
+        .iter()
+        .filter(move |s| s.cycles.floor() as u32 == k)
+        .map(move |s| (s.cycles - k as f32, s))
+}
+
+/// The narrowest margin and the greatest height over stroke `k`, over the rest diameter.
+fn contracted(samples: &[Sample], k: u32) -> (f32, f32) {
+    cycle(samples, k).fold((f32::MAX, 0.0f32), |(m, h), (_, x)| {
+        (m.min(x.margin), h.max(x.height))
+    })
+}
+
+/// The moon jelly with every length times `scale` and its animal's pulse rate at that
+/// size (frequency falling as the diameter to the −1/2, `docs/physics.md` section 5).
+fn resized(base: &Species, scale: f32) -> Species {
+    Species {
+        name: format!("{} {:.0} mm", base.name, base.diameter * scale * 1000.0),
+        diameter: base.diameter * scale,
+        height: base.height * scale,
+        thickness: base.thickness * scale,
+        // Plate bending E·ϑ³/12 (per the fixed 2 mm reference hinge).
+        angular_stiffness: base.angular_stiffness * scale.powi(3),
+        tentacle_length: base.tentacle_length * scale,
+        tentacle_radius: base.tentacle_radius * scale,
+        contraction_frequency: base.contraction_frequency / scale.sqrt(),
+        ..base.clone()
+    }
+}
+
+/// The record: (phase, margin, widest, height), lengths over the rest diameter.
+fn record(path: &Path) -> Vec<(f32, f32, f32, f32)> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("time"))
+        .filter_map(|l| {
+            let v: Vec<f32> = l.split(',').filter_map(|x| x.parse().ok()).collect();
+            (v.len() == 5).then(|| (v[1], v[2], v[3], v[4]))
+        })
+        .collect()
+}
+
+const COLORS: [[u8; 3]; 5] = [
+    [31, 119, 180],
+    [44, 160, 44],
+    [214, 39, 40],
+    [148, 103, 189],
+    [255, 127, 14],
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let value = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+    };
+    let strokes: u32 = value("--strokes")
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20);
+    let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
+    let under_way = strokes.saturating_sub(2).max(1);
+
+    let mut species = shipped_species();
+    species.push(Species::paper());
+    let runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = species
+            .iter()
+            .map(|s| scope.spawn(move || (s.clone(), from_rest(s, strokes))))
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+
+    println!(
+        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | height contracted (rest) |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for (s, samples) in &runs {
+        let strokes = per_stroke(samples);
+        let late = &strokes[strokes.len().saturating_sub(5)..];
+        let steady = late.iter().sum::<f32>() / late.len().max(1) as f32;
+        let refill = cycle(samples, under_way)
+            .filter(|(phase, _)| *phase > s.contraction_duty)
+            .map(|(_, x)| x.speed)
+            .fold(f32::MAX, f32::min);
+        let (margin, height) = contracted(samples, under_way);
+        println!(
+            "| {} | {:.3}, {:.3}, {:.3} | {steady:.3} | {refill:+.3} | {margin:.2} | {height:.2} ({:.2}) |",
+            s.name, strokes[0], strokes[1], strokes[2], samples[0].height,
+        );
+    }
+
+    // The moon jelly at other sizes, and at the recorded animal's.
+    let aurelia = Species::aurelia();
+    let sizes = [0.5, 1.0, 2.0, 155.0 / 40.0];
+    let resized_runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = sizes
+            .iter()
+            .map(|&k| {
+                let s = resized(&aurelia, k);
+                scope.spawn(move || {
+                    let samples = from_rest(&s, strokes);
+                    (s, samples)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    println!(
+        "\n| moon jelly | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | margin contracted | height contracted |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for (s, samples) in &resized_runs {
+        let strokes = per_stroke(samples);
+        let late = &strokes[strokes.len().saturating_sub(5)..];
+        let steady = late.iter().sum::<f32>() / late.len().max(1) as f32;
+        let (margin, height) = contracted(samples, under_way);
+        println!(
+            "| {} | {:.2} | {steady:.3} | {:.1} | {margin:.2} | {height:.2} |",
+            s.name,
+            s.contraction_frequency,
+            steady * s.diameter * s.contraction_frequency * 1000.0
+        );
+    }
+
+    let rec =
+        record(&Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/records/aurelia_dabiri2011.csv"));
+    let moon = &runs
+        .iter()
+        .find(|(s, _)| s.name == aurelia.name)
+        .expect("the moon jelly is shipped")
+        .1;
+    let recorded_size = &resized_runs[sizes.len() - 1];
+    let under = |samples: &[Sample], f: fn(&Sample) -> f32| -> Vec<(f32, f32)> {
+        cycle(samples, under_way).map(|(p, x)| (p, f(x))).collect()
+    };
+    let gray = [90, 90, 90];
+    let shape_chart =
+        |title: &str, y: &str, f: fn(&Sample) -> f32, recorded: Vec<(f32, f32)>| Chart {
+            title: title.into(),
+            x_label: "phase of the stroke".into(),
+            y_label: y.into(),
+            series: vec![
+                Series {
+                    label: "record: 155 mm, Dabiri 2011".into(),
+                    points: recorded,
+                    color: gray,
+                    markers: true,
+                },
+                Series {
+                    label: "model, 40 mm".into(),
+                    points: under(moon, f),
+                    color: COLORS[0],
+                    markers: false,
+                },
+                Series {
+                    label: "model scaled to 155 mm".into(),
+                    points: under(&recorded_size.1, f),
+                    color: COLORS[4],
+                    markers: false,
+                },
+            ],
+            equal_aspect: false,
+        };
+    let in_time = |f: fn(&Sample) -> f32| -> Vec<Series> {
+        runs.iter()
+            .zip(COLORS)
+            .map(|((s, samples), color)| Series {
+                label: s.name.clone(),
+                points: samples.iter().map(|x| (x.cycles, f(x))).collect(),
+                color,
+                markers: false,
+            })
+            .collect()
+    };
+    let mut distance = in_time(|x| x.distance);
+    // The recorded moon jelly's range once under way (Xu & Dabiri 2020), from where the
+    // model's is eight strokes before the end.
+    let start = strokes.saturating_sub(8) as f32;
+    let from = moon
+        .iter()
+        .find(|x| x.cycles >= start)
+        .map_or(0.0, |x| x.distance);
+    for per_cycle in [0.3f32, 0.7] {
+        distance.push(Series {
+            label: if per_cycle < 0.5 {
+                "record: Aurelia 0.3-0.7 D per cycle".into()
+            } else {
+                String::new()
+            },
+            points: vec![
+                (start, from),
+                (strokes as f32, from + (strokes as f32 - start) * per_cycle),
+            ],
+            color: gray,
+            markers: false,
+        });
+    }
+    let charts = [
+        shape_chart(
+            "Moon jelly, a stroke under way: margin",
+            "margin width / rest diameter",
+            |x| x.margin,
+            rec.iter().map(|r| (r.0, r.1)).collect(),
+        ),
+        shape_chart(
+            "Moon jelly, a stroke under way: height",
+            "height / rest diameter",
+            |x| x.height,
+            rec.iter().map(|r| (r.0, r.3)).collect(),
+        ),
+        Chart {
+            title: "Speed from rest".into(),
+            x_label: "strokes".into(),
+            y_label: "speed (diameters per second)".into(),
+            series: in_time(|x| x.speed),
+            equal_aspect: false,
+        },
+        Chart {
+            title: "Distance from rest".into(),
+            x_label: "strokes".into(),
+            y_label: "distance (diameters)".into(),
+            series: distance,
+            equal_aspect: false,
+        },
+    ];
+    let png = out.join("kinematics.png");
+    match plot::write_png(&png, &charts, 2, 640, 420) {
+        Ok(()) => println!("\nwrote {}", png.display()),
+        Err(e) => eprintln!("kinematics: cannot write {}: {e}", png.display()),
+    }
+    let csv = out.join("kinematics.csv");
+    let written = std::fs::File::create(&csv).and_then(|mut f| {
+        writeln!(
+            f,
+            "species,diameter_m,time_s,strokes,distance_d,speed_d_per_s,margin_d,height_d"
+        )?;
+        for (s, samples) in runs.iter().chain(&resized_runs) {
+            for x in samples {
+                writeln!(
+                    f,
+                    "{},{},{:.4},{:.4},{:.5},{:.5},{:.4},{:.4}",
+                    s.name, s.diameter, x.time, x.cycles, x.distance, x.speed, x.margin, x.height
+                )?;
+            }
+        }
+        Ok(())
+    });
+    match written {
+        Ok(()) => println!("wrote {}", csv.display()),
+        Err(e) => eprintln!("kinematics: cannot write {}: {e}", csv.display()),
+    }
+}
