@@ -6,7 +6,9 @@
 //! *spread* of a set of runs is (max − min) / mean; *cv* is the cycle-to-cycle coefficient
 //! of variation over the same cycles.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|all] [--from 10] [--to 30]`
+//! `calibration` shows the paper's findings on [`Species::paper`].
+//!
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|all] [--from 10] [--to 30] [--species name] [--set field=value ...]`
 
 #[path = "common/species.rs"]
 mod common;
@@ -413,7 +415,8 @@ fn main() {
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
         .map(|s| with_overrides(s, &overrides))
         .collect();
-    let default = with_overrides(Species::aurelia(), &overrides);
+    // The paper's findings (staggering, Reynolds numbers) are shown on the paper's model.
+    let paper = with_overrides(Species::paper(), &overrides);
     if matches!(which, "frames" | "all") {
         frames(&species, from, to);
     }
@@ -441,7 +444,7 @@ fn main() {
         timestep(&species, from, to);
     }
     if matches!(which, "calibration") {
-        calibration(&default);
+        calibration(&paper);
     }
     if matches!(which, "crumples") {
         crumples(&species, flag("--cycles", 300));

@@ -1,7 +1,9 @@
-//! The paper's Fig. 5: how far the default jellyfish swims in a fixed time at contraction
-//! frequencies from 0.2 to 1.6 Hz (0.1 Hz apart), with staggered and with unison
-//! re-expansion, and with a bell twice as stiff, whose resonance (and so its best
-//! frequency) lies higher.
+//! The paper's Fig. 5: how far the paper's moon jelly ([`Species::paper`]) swims in a
+//! fixed time at contraction frequencies from 0.2 to 1.6 Hz (0.1 Hz apart), with staggered
+//! and with unison re-expansion, and with a bell twice as stiff, whose resonance (and so
+//! its best frequency) lies higher; beside it the calibrated moon jelly
+//! ([`Species::aurelia`], same size), whose own peak should sit near the rate its animal
+//! pulses at.
 //!
 //! Prints a table and the peaks, writes `sweep.csv` and `sweep.png` (distance against
 //! frequency; trajectories against time) into `--out` (default `docs/`).
@@ -17,14 +19,14 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// One line of the sweep: a label and how it changes the default species.
+/// One line of the sweep: a label and how it changes the paper's species.
 struct Variant {
     label: &'static str,
     color: [u8; 3],
     apply: fn(&mut Species),
 }
 
-const VARIANTS: [Variant; 3] = [
+const VARIANTS: [Variant; 4] = [
     Variant {
         label: "staggered",
         color: [31, 119, 180],
@@ -39,6 +41,11 @@ const VARIANTS: [Variant; 3] = [
         label: "staggered, bell 2x stiffer",
         color: [44, 160, 44],
         apply: |s| s.elastic_modulus *= 2.0,
+    },
+    Variant {
+        label: "moon jelly, calibrated",
+        color: [148, 103, 189],
+        apply: |s| *s = Species::aurelia(),
     },
 ];
 
@@ -80,7 +87,7 @@ fn parse_options() -> Result<Options, String> {
 }
 
 fn species(variant: usize, frequency: f32, o: &Options) -> Species {
-    let mut s = Species::aurelia();
+    let mut s = Species::paper();
     (VARIANTS[variant].apply)(&mut s);
     s.contraction_frequency = frequency;
     if let Some(grid) = o.grid {
@@ -163,7 +170,7 @@ fn final_distance(run: &Run) -> f32 {
 
 /// Distance against frequency for one variant, in diameters.
 fn curve(runs: &[Run], variant: usize) -> Vec<(f32, f32)> {
-    let diameter = Species::aurelia().diameter;
+    let diameter = Species::paper().diameter;
     runs.iter()
         .filter(|r| r.variant == variant)
         .map(|r| (r.frequency, final_distance(r) / diameter))
@@ -171,7 +178,7 @@ fn curve(runs: &[Run], variant: usize) -> Vec<(f32, f32)> {
 }
 
 fn report(runs: &[Run], o: &Options) {
-    let grid = o.grid.unwrap_or(Species::aurelia().grid_resolution);
+    let grid = o.grid.unwrap_or(Species::paper().grid_resolution);
     println!(
         "distance swum in {} s (grid {grid}), in bell diameters",
         o.seconds
@@ -264,7 +271,7 @@ fn report(runs: &[Run], o: &Options) {
         [200, 30, 60],
         [120, 60, 20],
     ];
-    let diameter = Species::aurelia().diameter;
+    let diameter = Species::paper().diameter;
     let shown = [0.2, 0.4, 0.6, 0.7, 0.8, 1.0, 1.2, 1.6];
     let trajectories = Chart {
         title: "Trajectories, staggered".into(),
