@@ -132,8 +132,9 @@ fn jellyfish_show_up_in_the_tank() {
         empty.mean_brightness()
     );
 
-    // The school at 20 scene units per metre: enough of them to stand out from the snow.
-    let per_species = 3 * PER_SPECIES;
+    // The school at 20 scene units per metre: enough of them to stand out from the snow
+    // (the moon jelly, a saucer, covers a third of what the paper's dome did).
+    let per_species = 4 * PER_SPECIES;
     offscreen.world_mut().resource_mut::<School>().per_species = per_species;
     let school = shot(&mut offscreen, 20, "school.png");
     let count = offscreen
