@@ -9,7 +9,8 @@
 //! rate set to its animal's at that size. Writes `kinematics.csv` and `kinematics.png`
 //! into `--out` (default `docs/`).
 //!
-//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20] [--out docs]`
+//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20] [--out docs] [--set field=value …]`
+//! (`--set` changes every species, the paper's and the resized moon jellies too).
 
 #[path = "common/species.rs"]
 mod common;
@@ -18,7 +19,7 @@ mod common;
 mod plot;
 
 use bevy_jellyfish::{SliceSim, Species};
-use common::shipped_species;
+use common::{overrides, shipped_species, with_overrides};
 use plot::{Chart, Series};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -153,8 +154,13 @@ fn main() {
     let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
     let under_way = strokes.saturating_sub(2).max(1);
 
+    let overrides = overrides(&args);
     let mut species = shipped_species();
     species.push(Species::paper());
+    let species: Vec<Species> = species
+        .into_iter()
+        .map(|s| with_overrides(s, &overrides))
+        .collect();
     let runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
         let handles: Vec<_> = species
             .iter()
@@ -183,7 +189,7 @@ fn main() {
     }
 
     // The moon jelly at other sizes, and at the recorded animal's.
-    let aurelia = Species::aurelia();
+    let aurelia = with_overrides(Species::aurelia(), &overrides);
     let sizes = [0.5, 1.0, 2.0, 155.0 / 40.0];
     let resized_runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
         let handles: Vec<_> = sizes

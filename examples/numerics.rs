@@ -15,7 +15,7 @@ mod common;
 
 use bevy_jellyfish::sim::clock::FixedClock;
 use bevy_jellyfish::{SliceSim, Species};
-use common::shipped_species;
+use common::{overrides, shipped_species, with_overrides};
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -73,25 +73,6 @@ fn swim_in_steps(species: &Species, finer: u32, frame: f32, from: u32, to: u32) 
         cost,
         recoveries: sim.recoveries(),
     }
-}
-
-/// Applies `--set field=value` overrides (RON values) to a species.
-fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
-    if overrides.is_empty() {
-        return species;
-    }
-    let text = species.to_ron().expect("a species writes as RON");
-    let lines: Vec<String> = text
-        .lines()
-        .map(|line| {
-            let key = line.trim_start().split(':').next().unwrap_or("");
-            match overrides.iter().find(|(k, _)| k == key) {
-                Some((k, v)) => format!("    {k}: {v},"),
-                None => line.to_string(),
-            }
-        })
-        .collect();
-    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
 }
 
 /// Runs the jobs on every core, keeping their order.
@@ -398,14 +379,7 @@ fn main() {
     };
     let (from, to) = (flag("--from", 10), flag("--to", 30));
     let which = args.first().map(String::as_str).unwrap_or("all");
-    let overrides: Vec<(String, String)> = args
-        .windows(2)
-        .filter(|w| w[0] == "--set")
-        .filter_map(|w| {
-            w[1].split_once('=')
-                .map(|(k, v)| (k.to_string(), v.to_string()))
-        })
-        .collect();
+    let overrides = overrides(&args);
     let only: Option<&String> = args
         .iter()
         .position(|a| a == "--species")

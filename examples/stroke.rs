@@ -13,27 +13,11 @@ mod common;
 mod plot;
 
 use bevy_jellyfish::{SliceSim, Species};
-use common::shipped_species;
+use common::{overrides, shipped_species, with_overrides};
 use plot::{Chart, Series};
 use std::path::PathBuf;
 
 const PHASES: usize = 8;
-
-/// Applies `field=value` overrides (RON values) through the species' RON text.
-fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
-    let text = species.to_ron().expect("a species writes as RON");
-    let lines: Vec<String> = text
-        .lines()
-        .map(|line| {
-            let key = line.trim_start().split(':').next().unwrap_or("");
-            match overrides.iter().find(|(k, _)| k == key) {
-                Some((k, v)) => format!("    {k}: {v},"),
-                None => line.to_string(),
-            }
-        })
-        .collect();
-    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
-}
 
 /// Outlines of one cycle, in bell diameters, world positions relative to the first.
 fn stroke(species: &Species, cycle: u32) -> Chart {
@@ -98,14 +82,7 @@ fn main() {
     };
     let cycle: u32 = value("--cycle").and_then(|v| v.parse().ok()).unwrap_or(20);
     let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
-    let overrides: Vec<(String, String)> = args
-        .windows(2)
-        .filter(|w| w[0] == "--set")
-        .filter_map(|w| {
-            w[1].split_once('=')
-                .map(|(k, v)| (k.to_string(), v.to_string()))
-        })
-        .collect();
+    let overrides = overrides(&args);
     let charts: Vec<Chart> = shipped_species()
         .into_iter()
         .map(|s| stroke(&with_overrides(s, &overrides), cycle))

@@ -551,10 +551,11 @@ fn a_stroke_hardly_swims_where_viscosity_rules(geometry: SliceGeometry) {
 
 in_both_geometries!(#[ignore = "long: every species with no, its own and a 3× longer fringe, 40 strokes"] fn tentacles_slow_the_bell_down);
 /// Tentacles add drag and slow the bell, the longer the more (Miles & Battista 2019). In
-/// the plane each species' own fringe costs it 5–30%. In r–z the moon jelly's fringe, an
-/// eighth of its diameter long, rows a little (5% faster than bare; 10 mm: 6% slower,
-/// 15 mm: 15%): there it may change the speed by −10% to +30%, and a fringe three times
-/// as long must slow it by at least 5% more.
+/// the plane each species' own fringe costs it 5–30%. In r–z the moon jelly's fringe, 200
+/// tentacles an eighth of its diameter long that cover half its margin's circumference,
+/// is a skirt that rows (13% faster than bare; three times as long, 13% slower): there
+/// its own fringe may change its speed by up to 30% either way. In both, a fringe three
+/// times as long must slow it by at least 5% more than its own.
 fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
     for s in calibrated_in(geometry) {
         let speed = |length: f32| {
@@ -576,7 +577,7 @@ fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
         );
         let own = match geometry {
             SliceGeometry::Planar => 0.05..=0.30,
-            SliceGeometry::Axisymmetric => -0.10..=0.30,
+            SliceGeometry::Axisymmetric => -0.30..=0.30,
         };
         assert!(own.contains(&slower), "{}: {slower}", s.name);
         assert!(

@@ -1,6 +1,7 @@
 //! The shipped species files: read from `assets/species/` so that an edited file shows in
 //! the core examples' numbers, and checked before a windowed example starts so that a
-//! missing one is said at once. Shared by the examples (`#[path]`-included).
+//! missing one is said at once; and the `--set field=value` overrides the core examples
+//! take. Shared by the examples (`#[path]`-included).
 #![allow(dead_code)] // each example that includes it uses a part
 
 use bevy_jellyfish::Species;
@@ -60,4 +61,35 @@ pub fn find_species_file(name: &str, example: &str) -> Result<PathBuf, String> {
             path.display()
         ))
     }
+}
+
+/// The `--set field=value` pairs among `args` (values in RON).
+pub fn overrides(args: &[String]) -> Vec<(String, String)> {
+    args.windows(2)
+        .filter(|w| w[0] == "--set")
+        .filter_map(|w| {
+            w[1].split_once('=')
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+        })
+        .collect()
+}
+
+/// `species` with `overrides` applied through its RON text; a bad field or value panics
+/// with the species' own error naming it.
+pub fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
+    if overrides.is_empty() {
+        return species;
+    }
+    let text = species.to_ron().expect("a species writes as RON");
+    let lines: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let key = line.trim_start().split(':').next().unwrap_or("");
+            match overrides.iter().find(|(k, _)| k == key) {
+                Some((k, v)) => format!("    {k}: {v},"),
+                None => line.to_string(),
+            }
+        })
+        .collect();
+    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
 }

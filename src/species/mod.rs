@@ -99,8 +99,9 @@ pub struct Species {
     /// Fraction of a cycle spent contracting; the rest is re-expansion.
     pub contraction_duty: f32,
     /// Fraction of the time between contractions the muscle takes to relax back to its
-    /// rest length, in unison (paper: half; a moon jelly relaxes all the way to its next
-    /// stroke). Staggered springs nearer the aperture take longer, up to the whole of it.
+    /// rest length, in unison (paper: half). The bell's own recoil refills it: how long
+    /// that takes is an outcome. Staggered springs nearer the aperture take longer, up to
+    /// the whole of it.
     pub relaxation_span: f32,
     /// 0: all muscle springs re-expand in unison; 1: springs nearer the aperture
     /// re-expand later and more slowly (the paper's staggered expansion).

@@ -30,13 +30,15 @@ impl Species {
             height: 0.0054,
             thickness,
             angular_stiffness: 1186.0 * thickness * thickness * thickness / 12.0 / 0.002,
-            // The same animal contracts in 0.80 s and refills in 2.07 s, relaxing until
-            // the next stroke. At 40 mm it pulses about twice as often as at 15.5 cm
-            // (0.35 Hz): frequency falling with size as McHenry & Jed (2003) report,
-            // taken here as D^(-1/2).
+            // The same animal contracts in 0.80 s of its 2.87 s cycle. Its muscle lets go
+            // well before the bell has refilled (over half the time to the next stroke, as
+            // the paper's): the slow reopening of the margin is the mesoglea's recoil, an
+            // outcome (`examples/kinematics.rs`). At 40 mm it pulses about twice as often
+            // as at 15.5 cm (0.35 Hz): frequency falling with size as McHenry & Jed (2003)
+            // report, taken here as D^(-1/2).
             contraction_frequency: 0.7,
             contraction_duty: 0.28,
-            relaxation_span: 1.0,
+            relaxation_span: 0.5,
             // Hundreds of short marginal tentacles, an eighth of the bell long.
             tentacle_count: 200,
             tentacle_length: 0.005,

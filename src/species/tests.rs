@@ -53,11 +53,12 @@ fn the_moon_jelly_is_a_saucer_timed_as_the_animal() {
     let s = Species::aurelia();
     s.validate().unwrap();
     // Dabiri's 15.5 cm animal (docs/physics.md section 5): 0.26 D from apex to margin at
-    // rest, of which the apex mesoglea 0.125 D, 0.80 s of contraction in a 2.87 s cycle.
+    // rest, of which the apex mesoglea 0.125 D; 0.80 s of contraction in a 2.87 s cycle.
     assert!(((s.height + s.thickness) / s.diameter - 0.26).abs() < 0.005);
     assert!((s.thickness / s.diameter - 0.125).abs() < 0.005);
     assert!((s.contraction_duty - 0.80 / 2.87).abs() < 0.005);
-    assert_eq!(s.relaxation_span, 1.0);
+    // Its muscle lets go well before the bell has refilled; the recoil is the bell's.
+    assert!(s.relaxation_span <= 0.5);
     assert_eq!(s.slice_geometry, SliceGeometry::Axisymmetric);
     // Fifteen cells per diameter on the paper's grid.
     assert!((s.diameter / s.cell_size() - 15.0).abs() < 1e-3);
