@@ -78,6 +78,29 @@ fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
     samples
 }
 
+/// Each of `species` from rest for `strokes` strokes, one thread each.
+fn from_rest_all(species: Vec<Species>, strokes: u32) -> Vec<(Species, Vec<Sample>)> {
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = species
+            .into_iter()
+            .map(|s| {
+                scope.spawn(move || {
+                    let samples = from_rest(&s, strokes);
+                    (s, samples)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    })
+}
+
+/// Mean distance per stroke over the last five strokes, diameters.
+fn under_way_per_stroke(samples: &[Sample]) -> f32 {
+    let strokes = per_stroke(samples);
+    let late = &strokes[strokes.len().saturating_sub(5)..];
+    late.iter().sum::<f32>() / late.len().max(1) as f32
+}
+
 /// Distance per stroke over each whole cycle.
 fn per_stroke(samples: &[Sample]) -> Vec<f32> {
     let mut starts = vec![0.0f32];
@@ -161,13 +184,7 @@ fn main() {
         .into_iter()
         .map(|s| with_overrides(s, &overrides))
         .collect();
-    let runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = species
-            .iter()
-            .map(|s| scope.spawn(move || (s.clone(), from_rest(s, strokes))))
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
-    });
+    let runs = from_rest_all(species, strokes);
 
     println!(
         "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | height contracted (rest) |"
@@ -175,8 +192,7 @@ fn main() {
     println!("|---|---|---|---|---|---|");
     for (s, samples) in &runs {
         let strokes = per_stroke(samples);
-        let late = &strokes[strokes.len().saturating_sub(5)..];
-        let steady = late.iter().sum::<f32>() / late.len().max(1) as f32;
+        let steady = under_way_per_stroke(samples);
         let refill = cycle(samples, under_way)
             .filter(|(phase, _)| *phase > s.contraction_duty)
             .map(|(_, x)| x.speed)
@@ -191,27 +207,16 @@ fn main() {
     // The moon jelly at other sizes, and at the recorded animal's.
     let aurelia = with_overrides(Species::aurelia(), &overrides);
     let sizes = [0.5, 1.0, 2.0, 155.0 / 40.0];
-    let resized_runs: Vec<(Species, Vec<Sample>)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = sizes
-            .iter()
-            .map(|&k| {
-                let s = resized(&aurelia, k);
-                scope.spawn(move || {
-                    let samples = from_rest(&s, strokes);
-                    (s, samples)
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
-    });
+    let resized_runs = from_rest_all(
+        sizes.iter().map(|&k| resized(&aurelia, k)).collect(),
+        strokes,
+    );
     println!(
         "\n| moon jelly | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | margin contracted | height contracted |"
     );
     println!("|---|---|---|---|---|---|");
     for (s, samples) in &resized_runs {
-        let strokes = per_stroke(samples);
-        let late = &strokes[strokes.len().saturating_sub(5)..];
-        let steady = late.iter().sum::<f32>() / late.len().max(1) as f32;
+        let steady = under_way_per_stroke(samples);
         let (margin, height) = contracted(samples, under_way);
         println!(
             "| {} | {:.2} | {steady:.3} | {:.1} | {margin:.2} | {height:.2} |",
