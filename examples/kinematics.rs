@@ -198,9 +198,12 @@ fn main() {
             .map(|(_, x)| x.speed)
             .fold(f32::MAX, f32::min);
         let (margin, height) = contracted(samples, under_way);
+        let first: Vec<String> = strokes.iter().take(3).map(|d| format!("{d:.3}")).collect();
         println!(
-            "| {} | {:.3}, {:.3}, {:.3} | {steady:.3} | {refill:+.3} | {margin:.2} | {height:.2} ({:.2}) |",
-            s.name, strokes[0], strokes[1], strokes[2], samples[0].height,
+            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {height:.2} ({:.2}) |",
+            s.name,
+            first.join(", "),
+            samples[0].height,
         );
     }
 
