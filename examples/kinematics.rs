@@ -9,7 +9,7 @@
 //! rate set to its animal's at that size. Writes `kinematics.csv` and `kinematics.png`
 //! into `--out` (default `docs/`).
 //!
-//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20] [--out docs] [--set field=value …]`
+//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--set field=value …]`
 //! (`--set` changes every species, the paper's and the resized moon jellies too).
 
 #[path = "common/species.rs"]
@@ -171,9 +171,11 @@ fn main() {
             .position(|a| a == name)
             .and_then(|i| args.get(i + 1))
     };
+    // At least three: the first strokes from rest and one under way.
     let strokes: u32 = value("--strokes")
         .and_then(|v| v.parse().ok())
-        .unwrap_or(20);
+        .unwrap_or(20)
+        .max(3);
     let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
     let under_way = strokes.saturating_sub(2).max(1);
 
