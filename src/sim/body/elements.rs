@@ -58,7 +58,7 @@ pub(crate) struct Hinge {
 /// ½·D·Δs·r·(Δκ_θ)², is ½·k·(Δ sin ψ)² with k = D·Δs / r. The hinges hold only the
 /// meridian's own curvature, whose stiffness per radian vanishes at the axis; without this
 /// the apex of a flat bell folded into a cone (a cone's hoop curvature is unbounded there)
-/// and a bell buckled under its own stroke above 90 mm.
+/// and a moon jelly of the recorded 155 mm buckled under its own stroke.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct HoopBend {
     /// The segment's first point.
