@@ -166,11 +166,7 @@ const COLORS: [[u8; 3]; 5] = [
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let value = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1))
-    };
+    let value = |name: &str| common::value(&args, name);
     // At least three: the first strokes from rest and one under way.
     let strokes: u32 = value("--strokes")
         .and_then(|v| v.parse().ok())

@@ -75,11 +75,7 @@ fn stroke(species: &Species, cycle: u32) -> Chart {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let value = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1))
-    };
+    let value = |name: &str| common::value(&args, name);
     let cycle: u32 = value("--cycle").and_then(|v| v.parse().ok()).unwrap_or(20);
     let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
     let overrides = overrides(&args);

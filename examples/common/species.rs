@@ -63,6 +63,13 @@ pub fn find_species_file(name: &str, example: &str) -> Result<PathBuf, String> {
     }
 }
 
+/// The value after the option `name` among `args`, if any.
+pub fn value<'a>(args: &'a [String], name: &str) -> Option<&'a String> {
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+}
+
 /// The `--set field=value` pairs among `args` (values in RON).
 pub fn overrides(args: &[String]) -> Vec<(String, String)> {
     args.windows(2)
