@@ -5,8 +5,8 @@
 //!
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
-//! margin and height; then the moon jelly at other sizes, every length scaled and its pulse
-//! rate set to its animal's at that size. Writes `kinematics.csv` and `kinematics.png`
+//! margin and height; then the moon jelly and Sarsia at other sizes, every length scaled
+//! and the pulse rate set to the animal's at that size. Writes `kinematics.csv` and `kinematics.png`
 //! into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--set field=value …]`
@@ -127,8 +127,8 @@ fn contracted(samples: &[Sample], k: u32) -> (f32, f32) {
     })
 }
 
-/// The moon jelly with every length times `scale` and its animal's pulse rate at that
-/// size (frequency falling as the diameter to the −1/2, `docs/physics.md` section 5).
+/// A species with every length times `scale` and its animal's pulse rate at that size
+/// (frequency falling as the diameter to the −1/2, `docs/physics.md` section 5).
 fn resized(base: &Species, scale: f32) -> Species {
     Species {
         name: format!("{} {:.0} mm", base.name, base.diameter * scale * 1000.0),
@@ -139,6 +139,10 @@ fn resized(base: &Species, scale: f32) -> Species {
         angular_stiffness: base.angular_stiffness * scale.powi(3),
         tentacle_length: base.tentacle_length * scale,
         tentacle_radius: base.tentacle_radius * scale,
+        manubrium_length: base.manubrium_length * scale,
+        manubrium_radius: base.manubrium_radius * scale,
+        oral_arm_length: base.oral_arm_length * scale,
+        oral_arm_width: base.oral_arm_width * scale,
         contraction_frequency: base.contraction_frequency / scale.sqrt(),
         ..base.clone()
     }
@@ -205,15 +209,21 @@ fn main() {
         );
     }
 
-    // The moon jelly at other sizes, and at the recorded animal's.
+    // The moon jelly at other sizes and at the recorded animal's; Sarsia over the sizes
+    // Katija et al. (2015) found to swim the same diameters per stroke.
     let aurelia = with_overrides(Species::aurelia(), &overrides);
+    let sarsia = with_overrides(Species::sarsia(), &overrides);
     let sizes = [0.5, 1.0, 2.0, 155.0 / 40.0];
     let resized_runs = from_rest_all(
-        sizes.iter().map(|&k| resized(&aurelia, k)).collect(),
+        sizes
+            .iter()
+            .map(|&k| resized(&aurelia, k))
+            .chain([0.25, 0.5, 1.0].map(|k| resized(&sarsia, k)))
+            .collect(),
         strokes,
     );
     println!(
-        "\n| moon jelly | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | margin contracted | height contracted |"
+        "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | margin contracted | height contracted |"
     );
     println!("|---|---|---|---|---|---|");
     for (s, samples) in &resized_runs {
@@ -325,6 +335,26 @@ fn main() {
             x_label: "strokes".into(),
             y_label: "distance (diameters)".into(),
             series: distance,
+            equal_aspect: false,
+        },
+        Chart {
+            title: "At other sizes, pulse rate as diameter^-1/2".into(),
+            x_label: "bell diameter (mm)".into(),
+            y_label: "diameters per stroke, under way".into(),
+            series: [&aurelia, &sarsia]
+                .into_iter()
+                .zip([COLORS[1], COLORS[2]])
+                .map(|(base, color)| Series {
+                    label: base.name.clone(),
+                    points: resized_runs
+                        .iter()
+                        .filter(|(s, _)| s.name.starts_with(base.name.as_str()))
+                        .map(|(s, samples)| (s.diameter * 1000.0, under_way_per_stroke(samples)))
+                        .collect(),
+                    color,
+                    markers: true,
+                })
+                .collect(),
             equal_aspect: false,
         },
     ];

@@ -179,11 +179,16 @@ pub const MAX_MESH_VERTICES: usize = 50_000;
 /// at its budget, 60 frames then still take under the 2 s the limits promise.
 pub const MAX_COST_PER_SECOND: f64 = 0.5;
 
-/// Measured cost of one step on the reference machine: per fluid cell, per cell and
-/// diffusion sweep, and per body point (grid 60, 90 points: ~190 µs; grid 120: ~750 µs).
-const COST_PER_CELL: f64 = 48e-9;
-const COST_PER_CELL_SWEEP: f64 = 6e-9;
-const COST_PER_POINT: f64 = 0.3e-6;
+/// Cost of one step on the reference machine: per fluid cell, per cell and diffusion
+/// sweep, and per body point. First measured on the iterative fluid (grid 60, 90 points:
+/// ~190 µs); the exact pressure solves and the halved r–z and mirrored sweeps since made a
+/// step cheaper, and these figures then estimated 1.6–3.6 times what fifteen species and
+/// numerics measured (2026-11-27: the shipped species in both geometries, grids 60–120,
+/// all three advection schemes). Scaled down by 1.5, every one of them still costs no more
+/// than its estimate (Sarsia's bicubic r–z jet comes closest: 20.5 ms a second against 22).
+const COST_PER_CELL: f64 = 32e-9;
+const COST_PER_CELL_SWEEP: f64 = 4e-9;
+const COST_PER_POINT: f64 = 0.2e-6;
 
 /// What an advection scheme adds per fluid cell and step to the semi-Lagrangian step the
 /// figures above were measured with. The moon jelly at grid 120, one simulated second,

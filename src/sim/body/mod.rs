@@ -238,7 +238,7 @@ impl Body {
         let margins = [self.bell.start, self.bell.end - 1];
         for (side, range) in self.tentacles.clone().into_iter().enumerate() {
             let mut pull = Vec2::ZERO;
-            for i in range {
+            for i in range.clone() {
                 let f = self.scratch[i];
                 forces[i] = f;
                 slip[i] = if rings {
@@ -247,9 +247,19 @@ impl Body {
                     f * dt / self.tentacle_drag[i]
                 };
                 pull += f;
-                // Next step's drag at this step's relative speed.
+                // Next step's drag at this step's relative speed, across or along the
+                // tentacle.
+                let before = if i == range.start {
+                    margins[side]
+                } else {
+                    i - 1
+                };
+                let after = if i + 1 < range.end { i + 1 } else { i };
+                let tangent = (self.points[after] - self.points[before]).normalize_or_zero();
+                let direction = slip[i].normalize_or_zero();
+                let along = direction.dot(tangent).powi(2);
                 let speed = slip[i].length() / dt;
-                self.tentacle_drag[i] = self.drag_model.at(speed);
+                self.tentacle_drag[i] = self.drag_model.at_angle(speed, along);
             }
             // What drags the tentacles along pulls back on the margin they hang from.
             forces[margins[side]] -= pull;

@@ -24,6 +24,10 @@ pub(super) struct TentacleDrag {
     stokes: f32,
     /// Tentacle length per metre of depth that one point carries: segment × count / (π·D).
     length_per_point: f32,
+    /// One tentacle's length, m.
+    length: f32,
+    /// The water between neighbouring tentacles at the margin, m: π·D/count − 2a.
+    gap: f32,
 }
 
 impl TentacleDrag {
@@ -31,7 +35,12 @@ impl TentacleDrag {
     pub(crate) fn new(species: &Species, segment: f32, depth: Depth) -> Self {
         let per_depth = tentacles_per_depth(species, depth);
         let (radius, length) = (species.tentacle_radius, species.tentacle_length);
-        Self::cylinder(species, radius, length, per_depth * segment)
+        let gap = std::f32::consts::PI * species.diameter / species.tentacle_count.max(1) as f32
+            - 2.0 * radius;
+        Self {
+            gap: gap.max(0.0),
+            ..Self::cylinder(species, radius, length, per_depth * segment)
+        }
     }
 
     /// A cylinder of `radius` and `length` (m) in the species' water, carrying
@@ -45,6 +54,8 @@ impl TentacleDrag {
             kinematic_viscosity: species.kinematic_viscosity(),
             stokes: 4.0 * std::f32::consts::PI * species.viscosity / ((length / a).ln() + 0.5),
             length_per_point,
+            length,
+            gap: 0.0,
         }
     }
 
@@ -52,6 +63,27 @@ impl TentacleDrag {
     /// of depth.
     pub(crate) fn at(&self, speed: f32) -> f32 {
         (self.per_length(speed) * self.length_per_point).max(1e-9)
+    }
+
+    /// [`TentacleDrag::at`] for a slip at `speed` (m/s) whose direction makes an angle θ
+    /// with the tentacle, `along` = cos²θ. Across a tentacle the cylinder's drag; along
+    /// it, an isolated cylinder has no form drag, only slender-body Stokes drag's
+    /// tangential half (Cox 1970; Lighthill 1976). But where the viscous layers the
+    /// tentacles drag along their length, `√(ν·L/U)` thick (Glauert & Lighthill 1955),
+    /// span the gaps between them, the fringe moves its water as one porous sheet, and
+    /// drags as much along as across: a dense fringe (the moon jelly's, *Aequorea*'s) is
+    /// unchanged, four tentacles a bell's width apart (*Sarsia*'s) trail almost freely.
+    pub(crate) fn at_angle(&self, speed: f32, along: f32) -> f32 {
+        let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
+        let sheet = layer / self.gap.max(1e-9);
+        if sheet >= 1.0 || sheet.is_nan() {
+            return self.at(speed);
+        }
+        let across = self.per_length(speed);
+        let isolated = (0.5 * self.stokes).min(across);
+        let tangential = sheet * across + (1.0 - sheet) * isolated;
+        let along = along.clamp(0.0, 1.0);
+        (((1.0 - along) * across + along * tangential) * self.length_per_point).max(1e-9)
     }
 
     /// Force per unit of slip velocity per length of one tentacle at relative speed

@@ -237,3 +237,43 @@ fn hoop_bending_is_the_gradient_of_its_energy_and_stiffest_near_the_axis() {
     let planar = Body::new(&Species::paper(), Vec2::new(0.2, 0.2), 0.004);
     assert!(planar.hoop_bends.is_empty());
 }
+
+#[test]
+fn isolated_tentacles_trail_freely_and_a_dense_fringe_drags_as_a_sheet() {
+    use super::depth::Depth;
+    use super::tentacle::TentacleDrag;
+    let drag = |s: &Species| TentacleDrag::new(s, 0.001, Depth::new(s, 0.0, 0.001));
+    // Sarsia's four tentacles, a bell's width apart: across them the cylinder's drag, along
+    // them far less, never less than slender-body Stokes drag's tangential half.
+    let sparse = drag(&Species::sarsia());
+    for speed in [0.005, 0.02, 0.08] {
+        let (across, along) = (sparse.at_angle(speed, 0.0), sparse.at_angle(speed, 1.0));
+        assert_eq!(across, sparse.at(speed), "at {speed} m/s");
+        assert!(
+            along < 0.6 * across,
+            "at {speed} m/s: {along} along, {across} across"
+        );
+        let oblique = sparse.at_angle(speed, 0.5);
+        assert!(along < oblique && oblique < across, "at {speed} m/s");
+    }
+    // The moon jelly's two hundred, closer than the water they drag along is thick: the
+    // same drag whichever way the water slips past, to the bit.
+    let dense = drag(&Species::aurelia());
+    for speed in [0.005, 0.02] {
+        for along in [0.0, 0.3, 1.0] {
+            assert_eq!(dense.at_angle(speed, along), dense.at(speed));
+        }
+    }
+    // Between the two the drag along grows continuously as the gaps close.
+    let along_with = |count: u32| {
+        let s = Species {
+            tentacle_count: count,
+            ..Species::sarsia()
+        };
+        let d = drag(&s);
+        d.at_angle(0.02, 1.0) / d.at(0.02)
+    };
+    let ratios: Vec<f32> = [4, 8, 16, 32, 64].map(along_with).to_vec();
+    assert!(ratios.windows(2).all(|w| w[0] <= w[1]), "{ratios:?}");
+    assert_eq!(ratios[4], 1.0, "{ratios:?}");
+}
