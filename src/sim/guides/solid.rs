@@ -96,7 +96,21 @@ impl Solid {
         if !(self.near(meridian(p)) && inside(outline, meridian(p))) {
             return p;
         }
-        on_meridian(p, nearest_outside(outline, meridian(p), self.clearance))
+        // Where the outline folds back on itself (a contracted margin), just past the
+        // nearest edge can be inside again: step out edge by edge, and where that does not
+        // leave the fold, draw the node where the slice draws it.
+        let mut placed = meridian(p);
+        for _ in 0..4 {
+            placed = nearest_outside(outline, placed, self.clearance);
+            if !inside(outline, placed) {
+                return on_meridian(p, placed);
+            }
+        }
+        if inside(outline, meridian(reference)) {
+            on_meridian(p, placed)
+        } else {
+            reference
+        }
     }
 
     /// Where a node of a part hanging within the bell (the manubrium, an oral arm) may
