@@ -13,14 +13,18 @@ use crate::school::{self, School};
 use crate::screenshot::Offscreen;
 use crate::tank;
 use bevy::diagnostic::DiagnosticsStore;
+use bevy::ecs::schedule::NodeId;
+use bevy::ecs::schedule::graph::Direction;
 use bevy::mesh::MeshTag;
 use bevy::prelude::*;
+use bevy::render::{Render, RenderApp};
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode,
     SurfacePath,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -194,7 +198,8 @@ fn templates_draw_what_cpu_meshes_draw() {
                 surfaces,
                 detail: default(),
             })
-            .add_systems(Startup, shadow_light);
+            .add_systems(Startup, shadow_light)
+            .add_plugins(RenderOrder);
         }) {
             Ok(offscreen) => offscreen,
             Err(e) if require_render() => panic!("JELLYFISH_REQUIRE_RENDER=1, but {e}"),
@@ -236,6 +241,10 @@ fn templates_draw_what_cpu_meshes_draw() {
         let later = shot(6, format!("{surfaces:?}_later.png"));
         let path = *offscreen.world().resource::<SurfacePath>();
         glow_layers_follow_their_umbrellas(offscreen.world_mut(), path);
+        assert!(
+            offscreen.world().contains_resource::<RenderOrder>(),
+            "the render schedule must prepare the shape buffers before the surface materials"
+        );
         Some((now, later, path))
     };
     let Some((cpu, _, cpu_path)) = render(SurfaceMode::CpuMeshes) else {
@@ -262,6 +271,68 @@ fn templates_draw_what_cpu_meshes_draw() {
         mean < 0.01 && differing * 250 < moved,
         "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved})"
     );
+}
+
+/// In the render world, the shape buffers are prepared before the surface materials that
+/// bind them. A grown buffer is a new GPU buffer: a material prepared first bound the old
+/// one and drew its stale shapes until the next growth, which failed the comparison above
+/// now and then under load. Bevy leaves the two unordered; the plugin orders them.
+///
+/// Checked when the app is finished, before the render world moves to its own thread: a
+/// chain of ordering edges from one system to the other in the render schedule's graph,
+/// where an edge on a set orders its members and a system inherits its sets' edges. The
+/// resource is inserted only if the chain exists.
+#[derive(Resource)]
+struct RenderOrder;
+
+impl Plugin for RenderOrder {
+    fn build(&self, _: &mut App) {}
+
+    fn finish(&self, app: &mut App) {
+        let graph = app
+            .sub_app(RenderApp)
+            .world()
+            .resource::<Schedules>()
+            .get(Render)
+            .expect("the render schedule")
+            .graph();
+        let named = |words: &[&str]| {
+            let found: Vec<_> = graph
+                .systems
+                .iter()
+                .filter(|(_, system, _)| {
+                    let name = system.name().to_string();
+                    words.iter().all(|w| name.contains(w))
+                })
+                .map(|(key, _, _)| NodeId::System(key))
+                .collect();
+            assert_eq!(found.len(), 1, "one render system named {words:?}");
+            found[0]
+        };
+        let buffers = named(&["prepare_assets<", "GpuShaderBuffer>"]);
+        let materials = named(&["prepare_erased_assets<", "SurfaceExtension>"]);
+        let (dependency, hierarchy) = (graph.dependency().graph(), graph.hierarchy().graph());
+        // (node, whether all it holds runs after `buffers`, or it only holds `buffers`)
+        let mut todo = vec![(buffers, false)];
+        let mut seen = HashSet::new();
+        while let Some((node, after)) = todo.pop() {
+            if !seen.insert((node, after)) {
+                continue;
+            }
+            if after && node == materials {
+                app.insert_resource(RenderOrder);
+                return;
+            }
+            let next = dependency.neighbors_directed(node, Direction::Outgoing);
+            todo.extend(next.map(|n| (n, true)));
+            let sets = hierarchy.neighbors_directed(node, Direction::Incoming);
+            todo.extend(sets.map(|n| (n, false)));
+            if after {
+                let members = hierarchy.neighbors_directed(node, Direction::Outgoing);
+                todo.extend(members.map(|n| (n, true)));
+            }
+        }
+    }
 }
 
 /// Every jellyfish draws its umbrella twice: the blended body on itself and the glow layer

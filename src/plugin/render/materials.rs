@@ -23,6 +23,10 @@ use crate::species::Species;
 use bevy::ecs::system::SystemParam;
 use bevy::pbr::{MaterialPlugin, PbrPlugin};
 use bevy::prelude::*;
+use bevy::render::erased_render_asset::prepare_erased_assets;
+use bevy::render::render_asset::prepare_assets;
+use bevy::render::storage::GpuShaderBuffer;
+use bevy::render::{Render, RenderApp};
 
 /// Makes, updates and assigns our materials: [`SurfaceMaterial`]s (and, without storage
 /// buffers in vertex shaders, `StandardMaterial`s on CPU meshes), with each species'
@@ -38,6 +42,14 @@ impl Plugin for JellyfishMaterialPlugin {
             // One material type of ours for both paths: a third material plugin made
             // template tentacles vanish in Bevy 0.19 (not understood; see the tests).
             app.add_plugins(MaterialPlugin::<SurfaceMaterial>::default());
+            if let Some(render_app) = app.get_sub_app_mut(RenderApp) {
+                render_app.configure_sets(
+                    Render,
+                    ShapeBuffersBeforeSurfaceMaterials
+                        .after(prepare_assets::<GpuShaderBuffer>)
+                        .before(prepare_erased_assets::<MeshMaterial3d<SurfaceMaterial>>),
+                );
+            }
         }
         app.init_resource::<BellPatterns>()
             .register_type::<BellPatterns>()
@@ -66,6 +78,16 @@ impl Plugin for JellyfishMaterialPlugin {
             );
     }
 }
+
+/// Orders the shape buffers' preparation before the surface materials' in the render world.
+///
+/// When the shape buffers grow, each becomes a new GPU buffer and the materials are marked
+/// changed so that their bind groups take it. Bevy leaves the two preparations unordered:
+/// a material prepared first bound the old buffer, and kept drawing its stale shapes
+/// until the next growth (a flaky render test under load). An empty set, so it only
+/// orders.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct ShapeBuffersBeforeSurfaceMaterials;
 
 /// A material our jellyfish wear: made from the look of
 /// [`bell_material`](super::bell_material) and its siblings, with its tissue layer.
