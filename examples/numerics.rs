@@ -8,13 +8,17 @@
 //!
 //! `calibration` shows the paper's findings on [`Species::paper`].
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|all] [--from 10] [--to 30] [--species name] [--set field=value ...]`
+//! `fingerprint` runs every shipped species and the paper's model in both slice geometries
+//! for `--to` cycles and prints a hash of every cycle's distance, bit for bit, and the
+//! cost: a refactor meant to leave the physics alone must leave the hashes alone.
+//!
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--set field=value ...]`
 
 #[path = "common/species.rs"]
 mod common;
 
 use bevy_jellyfish::sim::clock::FixedClock;
-use bevy_jellyfish::{SliceSim, Species};
+use bevy_jellyfish::{SliceGeometry, SliceSim, Species};
 use common::{overrides, shipped_species, with_overrides};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -414,6 +418,9 @@ fn main() {
             );
         }
     }
+    if matches!(which, "fingerprint") {
+        fingerprint(&species, &paper, flag("--to", 10));
+    }
     if matches!(which, "timestep") {
         timestep(&species, from, to);
     }
@@ -425,5 +432,32 @@ fn main() {
     }
     if matches!(which, "convergence" | "all") {
         convergence(&species, from, to);
+    }
+}
+
+/// A hash of each cycle's distance (every bit) in both geometries, and the cost, one
+/// species at a time (so the costs are comparable on a busy machine).
+fn fingerprint(species: &[Species], paper: &Species, cycles: u32) {
+    use std::hash::{Hash, Hasher};
+    println!("| species | geometry | fingerprint | ms per simulated second |");
+    println!("|---|---|---|---|");
+    for s in species.iter().chain([paper]) {
+        for geometry in [SliceGeometry::Planar, SliceGeometry::Axisymmetric] {
+            let s = Species {
+                slice_geometry: geometry,
+                ..s.clone()
+            };
+            let run = swim(&s, 1.0 / 60.0, 0, cycles);
+            let mut hasher = std::collections::hash_map::DefaultHasher::new();
+            for d in &run.per_cycle {
+                d.to_bits().hash(&mut hasher);
+            }
+            println!(
+                "| {} | {geometry:?} | {:016x} | {:.2} |",
+                s.name,
+                hasher.finish(),
+                1000.0 * run.cost
+            );
+        }
     }
 }

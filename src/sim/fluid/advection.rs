@@ -2,7 +2,7 @@
 //! from each face (Stam 1999), optionally corrected by MacCormack's forward–backward
 //! step or sampled by a limited bicubic (see [`Advection`]).
 
-use super::sampling::{cell, cubic_sample, linear_sample, trace};
+use super::sampling::{cell, cubic_sample, cubic_sample4, linear_sample, trace};
 use super::symmetry::mirror;
 use super::{Advection, Fluid};
 
@@ -127,25 +127,15 @@ fn sweep<const MODE: u8>(
         let row = j * (n + 1);
         let u_row = &u[row..][..n + 1];
         let (v0, v1) = (&v[j * n..][..n], &v[(j + 1) * n..][..n]);
-        for i in 1..traced.min(n) {
+        let foot = |i: usize| {
             let cu = s * u_row[i];
             let cv = s * 0.25 * (v0[i - 1] + v0[i] + v1[i - 1] + v1[i]);
-            let (x, y) = (cell(i) - cu, cell(j) - cv);
-            match MODE {
-                CUBIC => out_u[row + i] = cubic_sample(src[0], n + 1, n, x, y),
-                LINEAR => out_u[row + i] = linear_sample(src[0], n + 1, n, x, y),
-                _ => trace(
-                    src[0],
-                    n + 1,
-                    n,
-                    x,
-                    y,
-                    row + i,
-                    out_u,
-                    bounds_u.as_deref_mut(),
-                ),
-            }
-        }
+            (cell(i) - cu, cell(j) - cv)
+        };
+        let faces = 1..traced.min(n);
+        let out = &mut out_u[row..][..n + 1];
+        let bounds = bounds_u.as_deref_mut().map(|b| &mut b[row..][..n + 1]);
+        trace_row::<MODE>(src[0], [n + 1, n], faces, foot, out, bounds);
     }
     // v faces, n × (n + 1), the open ends included: each one's own v, and u averaged
     // likewise (from the one row there is at the ends).
@@ -157,28 +147,49 @@ fn sweep<const MODE: u8>(
             &u[below * (n + 1)..][..n + 1],
             &u[above * (n + 1)..][..n + 1],
         );
-        for i in 0..traced {
+        let foot = |i: usize| {
             let cv = s * v_row[i];
             let cu = s * 0.25 * (u0[i] + u0[i + 1] + u1[i] + u1[i + 1]);
-            let (x, y) = (cell(i) - cu, cell(j) - cv);
-            match MODE {
-                CUBIC => out_v[row + i] = cubic_sample(src[1], n, n + 1, x, y),
-                LINEAR => out_v[row + i] = linear_sample(src[1], n, n + 1, x, y),
-                _ => trace(
-                    src[1],
-                    n,
-                    n + 1,
-                    x,
-                    y,
-                    row + i,
-                    out_v,
-                    bounds_v.as_deref_mut(),
-                ),
-            }
-        }
+            (cell(i) - cu, cell(j) - cv)
+        };
+        let out = &mut out_v[row..][..n];
+        let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
+        trace_row::<MODE>(src[1], [n, n + 1], 0..traced, foot, out, bounds);
     }
     if traced < n {
         mirror(out_u, out_v, bounds_u, bounds_v, n);
+    }
+}
+
+/// Samples `field` (`size` = columns × rows) at the foot of each face in `faces` of one
+/// row, into `out` (and the corners' range into `bounds`, for MacCormack). The bicubic
+/// takes four faces at a time, whose arithmetic the compiler vectorises (a fifth of
+/// *Sarsia*'s slice), and the rest one by one: the same bits either way. Bilinear gained
+/// nothing from it (memory, not arithmetic, bounds it).
+fn trace_row<const MODE: u8>(
+    field: &[f32],
+    [nx, ny]: [usize; 2],
+    faces: std::ops::Range<usize>,
+    foot: impl Fn(usize) -> (f32, f32),
+    out: &mut [f32],
+    mut bounds: Option<&mut [(f32, f32)]>,
+) {
+    let mut i = faces.start;
+    if MODE == CUBIC {
+        while i + 4 <= faces.end {
+            let feet: [(f32, f32); 4] = std::array::from_fn(|k| foot(i + k));
+            let (x, y) = (feet.map(|f| f.0), feet.map(|f| f.1));
+            out[i..][..4].copy_from_slice(&cubic_sample4(field, nx, ny, x, y));
+            i += 4;
+        }
+    }
+    for i in i..faces.end {
+        let (x, y) = foot(i);
+        match MODE {
+            CUBIC => out[i] = cubic_sample(field, nx, ny, x, y),
+            LINEAR => out[i] = linear_sample(field, nx, ny, x, y),
+            _ => trace(field, nx, ny, x, y, i, out, bounds.as_deref_mut()),
+        }
     }
 }
 
