@@ -164,8 +164,8 @@ fn sweep<const MODE: u8>(
 /// Samples `field` (`size` = columns × rows) at the foot of each face in `faces` of one
 /// row, into `out` (and the corners' range into `bounds`, for MacCormack). The bicubic
 /// takes four faces at a time, whose arithmetic the compiler vectorises (a fifth of
-/// *Sarsia*'s slice), and the rest one by one: the same bits either way. Bilinear gained
-/// nothing from it (memory, not arithmetic, bounds it).
+/// *Sarsia*'s slice): the same bits as one by one. Bilinear gained nothing from it
+/// (waiting on loads, not arithmetic, bounds it).
 fn trace_row<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
@@ -174,16 +174,22 @@ fn trace_row<const MODE: u8>(
     out: &mut [f32],
     mut bounds: Option<&mut [(f32, f32)]>,
 ) {
-    let mut i = faces.start;
-    if MODE == CUBIC {
-        while i + 4 <= faces.end {
-            let feet: [(f32, f32); 4] = std::array::from_fn(|k| foot(i + k));
+    if MODE == CUBIC && faces.len() >= 4 {
+        // The last four end the row, overlapping the four before where the count is not
+        // a multiple of four (those faces get the same value again).
+        let mut i = faces.start;
+        loop {
+            let at = i.min(faces.end - 4);
+            let feet: [(f32, f32); 4] = std::array::from_fn(|k| foot(at + k));
             let (x, y) = (feet.map(|f| f.0), feet.map(|f| f.1));
-            out[i..][..4].copy_from_slice(&cubic_sample4(field, nx, ny, x, y));
+            out[at..][..4].copy_from_slice(&cubic_sample4(field, nx, ny, x, y));
+            if at + 4 == faces.end {
+                return;
+            }
             i += 4;
         }
     }
-    for i in i..faces.end {
+    for i in faces {
         let (x, y) = foot(i);
         match MODE {
             CUBIC => out[i] = cubic_sample(field, nx, ny, x, y),
