@@ -84,6 +84,9 @@ const MARKER_R: f32 = 3.5;
 const TICK_LEN: i32 = 5;
 /// Pixels between ticks we aim for.
 const TICK_SPACING: i32 = 60;
+/// A legend row's height and its line sample's length.
+const LEGEND_ROW: i32 = TEXT_H + 6;
+const LEGEND_SWATCH: i32 = 26;
 
 // ---------------------------------------------------------------------------
 // Chart drawing
@@ -110,12 +113,54 @@ impl Frame {
 
 fn draw_chart(cv: &mut Canvas, chart: &Chart, cell: Rect) {
     let finite = || chart.series.iter().flat_map(|s| finite_points(&s.points));
+    let Some(mut f) = layout(chart, cell, data_range(finite().map(|p| p.1))) else {
+        return;
+    };
+    // Where every corner of the plot would hide data under the legend, raise the top of
+    // the y axis until the legend's band above the data is clear.
+    if let Some((w, h)) = legend_size(&chart.series)
+        && !chart.equal_aspect
+    {
+        let covered = |f: &Frame| {
+            let r = legend_corner(f, &chart.series, w, h);
+            chart
+                .series
+                .iter()
+                .map(|s| samples_in(f, &s.points, &r))
+                .sum::<usize>()
+        };
+        let (_, hi) = data_range(finite().map(|p| p.1));
+        let clear = ((h + 20) as f64 / f.plot.h as f64).min(0.6);
+        for _ in 0..3 {
+            if covered(&f) == 0 {
+                break;
+            }
+            let raised = f.y.min + (hi - f.y.min) / (1.0 - clear);
+            match layout(chart, cell, (f.y.min, raised.max(f.y.max + f.y.step))) {
+                Some(g) => f = g,
+                None => break,
+            }
+        }
+    }
+    let y_ticks = tick_labels(&f.y);
+    draw_grid(cv, &f, &y_ticks);
+    for s in &chart.series {
+        draw_series(cv, &f, s);
+    }
+    cv.outline(f.plot, FRAME);
+    draw_legend(cv, &f, &chart.series);
+    draw_labels(cv, &f, chart, cell);
+}
+
+/// The plot area and axes of `chart` in `cell` with its y axis fitted to `y_range`; none
+/// where the cell is too small to plot in.
+fn layout(chart: &Chart, cell: Rect, y_range: (f64, f64)) -> Option<Frame> {
+    let finite = || chart.series.iter().flat_map(|s| finite_points(&s.points));
     let top = 12 + TEXT_H + 12;
     let bottom = TICK_LEN + 6 + TEXT_H + 10 + TEXT_H + 10;
     let y_target = (cell.h - top - bottom) / TICK_SPACING;
-    let y = Axis::fit(data_range(finite().map(|p| p.1)), y_target);
-    let y_ticks = tick_labels(&y);
-    let y_label_w = y_ticks
+    let y = Axis::fit(y_range, y_target);
+    let y_label_w = tick_labels(&y)
         .iter()
         .map(|(_, s)| text_width(s, SCALE))
         .max()
@@ -131,7 +176,7 @@ fn draw_chart(cv: &mut Canvas, chart: &Chart, cell: Rect) {
         cell.h - top - bottom,
     );
     if plot.w < 16 || plot.h < 16 {
-        return;
+        return None;
     }
     let (mut x, mut y) = (x, y);
     if chart.equal_aspect {
@@ -152,14 +197,7 @@ fn draw_chart(cv: &mut Canvas, chart: &Chart, cell: Rect) {
             widen(&mut y, ux * plot.h as f64, y_target);
         }
     }
-    let f = Frame { plot, x, y };
-    draw_grid(cv, &f, &y_ticks);
-    for s in &chart.series {
-        draw_series(cv, &f, s);
-    }
-    cv.outline(plot, FRAME);
-    draw_legend(cv, &f, &chart.series);
-    draw_labels(cv, &f, chart, cell);
+    Some(Frame { plot, x, y })
 }
 
 /// Grid lines, tick marks and tick labels for both axes.
@@ -208,16 +246,12 @@ fn draw_series(cv: &mut Canvas, f: &Frame, s: &Series) {
 
 /// Legend box in the plot corner that covers the fewest data points.
 fn draw_legend(cv: &mut Canvas, f: &Frame, series: &[Series]) {
-    const ROW: i32 = TEXT_H + 6;
-    const SWATCH: i32 = 26;
+    const ROW: i32 = LEGEND_ROW;
+    const SWATCH: i32 = LEGEND_SWATCH;
     let entries: Vec<&Series> = series.iter().filter(|s| !s.label.is_empty()).collect();
-    let Some(text_w) = entries.iter().map(|s| text_width(&s.label, SCALE)).max() else {
+    let Some((w, h)) = legend_size(series) else {
         return;
     };
-    let (w, h) = (
-        8 + SWATCH + 8 + text_w + 8,
-        6 + ROW * entries.len() as i32 + 2,
-    );
     let r = legend_corner(f, series, w, h);
     cv.fill(r, [255, 255, 255]);
     cv.outline(r, [190, 190, 190]);
@@ -233,6 +267,20 @@ fn draw_legend(cv: &mut Canvas, f: &Frame, series: &[Series]) {
         mask.composite(cv, s.color);
         draw_text(cv, r.x + 16 + SWATCH, y, &s.label, SCALE, TEXT, false);
     }
+}
+
+/// The legend box's width and height; none without labelled series.
+fn legend_size(series: &[Series]) -> Option<(i32, i32)> {
+    let labels: Vec<&str> = series
+        .iter()
+        .filter(|s| !s.label.is_empty())
+        .map(|s| s.label.as_str())
+        .collect();
+    let text_w = labels.iter().map(|l| text_width(l, SCALE)).max()?;
+    Some((
+        8 + LEGEND_SWATCH + 8 + text_w + 8,
+        6 + LEGEND_ROW * labels.len() as i32 + 2,
+    ))
 }
 
 fn legend_corner(f: &Frame, series: &[Series], w: i32, h: i32) -> Rect {
