@@ -161,11 +161,11 @@ fn sweep<const MODE: u8>(
     }
 }
 
-/// Samples `field` (`size` = columns × rows) at the foot of each face in `faces` of one
-/// row, into `out` (and the corners' range into `bounds`, for MacCormack). The bicubic
-/// takes four faces at a time, whose arithmetic the compiler vectorises (a fifth of
-/// *Sarsia*'s slice): the same bits as one by one. Bilinear gained nothing from it
-/// (waiting on loads, not arithmetic, bounds it).
+/// Samples `field` (`[nx, ny]` columns and rows) at the foot of each face in `faces` of
+/// one row, into `out` (and the corners' range into `bounds`, for MacCormack). The
+/// bicubic, half of *Sarsia*'s slice one by one, takes four faces at a time, whose
+/// arithmetic the compiler vectorises: the same bits, a fifth off the slice. Bilinear
+/// gained nothing from it (waiting on loads, not arithmetic, bounds it).
 fn trace_row<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
