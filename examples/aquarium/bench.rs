@@ -44,6 +44,7 @@ pub fn run(
     }
     let (mut simulation, mut meshing, mut mesh_data, mut water) = (0.0, 0.0, 0.0, 0.0);
     let mut tier_changes = 0.0;
+    let mut tier_ms = [0.0; 3];
     let steps_before = steps(&mut app);
     let mut frame_ms = Vec::with_capacity(frames);
     let start = Instant::now();
@@ -57,6 +58,14 @@ pub fn run(
         mesh_data += value(store, &JellyfishDiagnostics::MESH_DATA);
         water += value(store, &JellyfishDiagnostics::WATER);
         tier_changes += value(store, &JellyfishDiagnostics::TIER_CHANGES);
+        let tiers = [
+            JellyfishDiagnostics::NEAR_MS,
+            JellyfishDiagnostics::MID_MS,
+            JellyfishDiagnostics::FAR_MS,
+        ];
+        for (sum, path) in tier_ms.iter_mut().zip(&tiers) {
+            *sum += value(store, path);
+        }
     }
     let n = frames.max(1) as f64;
     let jellyfish = count(&app).max(1.0);
@@ -82,9 +91,24 @@ pub fn run(
     );
     frame_ms.sort_by(f64::total_cmp);
     let p99 = frame_ms[((frame_ms.len() as f64 * 0.99) as usize).min(frame_ms.len() - 1)];
+    let mean = frame_ms.iter().sum::<f64>() / n;
     println!(
-        "frame time: mean {:.2} ms, p99 {p99:.2} ms",
-        frame_ms.iter().sum::<f64>() / n
+        "frame time: mean {mean:.2} ms, p99 {p99:.2} ms: {:.0}% and {:.0}% of a 1/{fps} s frame",
+        100.0 * mean * fps / 1e3,
+        100.0 * p99 * fps / 1e3,
+    );
+    let per = |ms: f64, count: usize| {
+        if count == 0 {
+            "-".to_string()
+        } else {
+            format!("{:.1} µs", 1e3 * ms / n / count as f64)
+        }
+    };
+    println!(
+        "CPU per jellyfish and frame, stepping and meshing: near {}, mid {}, far {}",
+        per(tier_ms[0], near),
+        per(tier_ms[1], mid),
+        per(tier_ms[2], far),
     );
     println!(
         "tiers: near {near}, mid {mid}, far {far}; {:.2} changes per frame; recorded cycles {:.1} MB",

@@ -27,6 +27,13 @@ impl JellyfishDiagnostics {
     pub const FAR: DiagnosticPath = DiagnosticPath::const_new("jellyfish/far");
     /// Jellyfish that changed tier this frame.
     pub const TIER_CHANGES: DiagnosticPath = DiagnosticPath::const_new("jellyfish/tier_changes");
+    /// Stepping and meshing the near jellyfish, ms (a part of [`Self::SIMULATION`] and
+    /// [`Self::MESHING`]; divide by [`Self::NEAR`] for one).
+    pub const NEAR_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/near_ms");
+    /// Stepping and meshing the mid-tier jellyfish, ms.
+    pub const MID_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mid_ms");
+    /// Replaying and meshing the far jellyfish, ms.
+    pub const FAR_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/far_ms");
     /// Stepping the tank's water ([`TankWater`](super::TankWater)), all fixed ticks of the
     /// frame, ms.
     pub const WATER: DiagnosticPath = DiagnosticPath::const_new("jellyfish/water_ms");
@@ -48,6 +55,9 @@ impl Plugin for JellyfishDiagnosticsPlugin {
             .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::MID))
             .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::FAR))
             .register_diagnostic(Diagnostic::new(JellyfishDiagnostics::TIER_CHANGES))
+            .register_diagnostic(ms(JellyfishDiagnostics::NEAR_MS))
+            .register_diagnostic(ms(JellyfishDiagnostics::MID_MS))
+            .register_diagnostic(ms(JellyfishDiagnostics::FAR_MS))
             .register_diagnostic(
                 Diagnostic::new(JellyfishDiagnostics::MESH_DATA).with_suffix(" MB"),
             )
@@ -65,6 +75,10 @@ fn record(
     diagnostics.add_measurement(&JellyfishDiagnostics::SIMULATION, || frame.simulation_ms);
     diagnostics.add_measurement(&JellyfishDiagnostics::MESHING, || frame.meshing_ms);
     diagnostics.add_measurement(&JellyfishDiagnostics::WATER, || frame.water_ms);
+    let [near_ms, mid_ms, far_ms] = frame.tier_ms;
+    diagnostics.add_measurement(&JellyfishDiagnostics::NEAR_MS, || near_ms);
+    diagnostics.add_measurement(&JellyfishDiagnostics::MID_MS, || mid_ms);
+    diagnostics.add_measurement(&JellyfishDiagnostics::FAR_MS, || far_ms);
     let mb = frame.mesh_bytes as f64 * 1e-6;
     diagnostics.add_measurement(&JellyfishDiagnostics::MESH_DATA, || mb);
     let changes = frame.tier_changes as f64;

@@ -10,6 +10,9 @@ use std::time::Duration;
 pub(crate) struct JellyfishTimings {
     simulation_ns: AtomicU64,
     meshing_ns: AtomicU64,
+    /// Stepping and meshing of one tier's jellyfish (near, mid, far), a part of the two
+    /// above; what they share (uploads, mesh assets) is in no tier.
+    tier_ns: [AtomicU64; 3],
     water_ns: AtomicU64,
     mesh_bytes: AtomicU64,
     tier_changes: AtomicU64,
@@ -19,19 +22,30 @@ pub(crate) struct JellyfishTimings {
 pub(crate) struct FrameFigures {
     pub simulation_ms: f64,
     pub meshing_ms: f64,
+    /// Near, mid and far jellyfish's stepping and meshing.
+    pub tier_ms: [f64; 3],
     pub water_ms: f64,
     pub mesh_bytes: u64,
     pub tier_changes: u64,
 }
 
 impl JellyfishTimings {
-    /// Adds time spent stepping slices this frame.
-    pub fn add_simulation(&self, d: Duration) {
-        self.simulation_ns
-            .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
+    /// Adds time spent stepping a jellyfish of tier `tier` (`Tier as usize`: the slices
+    /// import the timings, not the other way) this frame.
+    pub fn add_simulation(&self, tier: usize, d: Duration) {
+        let ns = d.as_nanos() as u64;
+        self.simulation_ns.fetch_add(ns, Ordering::Relaxed);
+        self.tier_ns[tier.min(2)].fetch_add(ns, Ordering::Relaxed);
     }
 
-    /// Adds time spent meshing this frame.
+    /// Adds time spent meshing a jellyfish of tier `tier` this frame.
+    pub fn add_meshing_of(&self, tier: usize, d: Duration) {
+        let ns = d.as_nanos() as u64;
+        self.meshing_ns.fetch_add(ns, Ordering::Relaxed);
+        self.tier_ns[tier.min(2)].fetch_add(ns, Ordering::Relaxed);
+    }
+
+    /// Adds time spent meshing this frame for all jellyfish together.
     pub fn add_meshing(&self, d: Duration) {
         self.meshing_ns
             .fetch_add(d.as_nanos() as u64, Ordering::Relaxed);
@@ -59,6 +73,7 @@ impl JellyfishTimings {
         FrameFigures {
             simulation_ms: ms(&self.simulation_ns),
             meshing_ms: ms(&self.meshing_ns),
+            tier_ms: self.tier_ns.each_ref().map(ms),
             water_ms: ms(&self.water_ns),
             mesh_bytes: self.mesh_bytes.swap(0, Ordering::Relaxed),
             tier_changes: self.tier_changes.swap(0, Ordering::Relaxed),

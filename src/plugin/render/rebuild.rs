@@ -51,7 +51,7 @@ pub(super) fn build_buffers(
             let templates = meshes.path == Some(SurfacePath::Templates);
             // A template's slot is shaped once even unseen: it must never show another's.
             if !(meshes.seen || templates && meshes.block.is_empty()) {
-                timings.add_meshing(start.elapsed());
+                timings.add_meshing_of(slice.tier() as usize, start.elapsed());
                 return;
             }
             let res = settings.resolution(&slice.species);
@@ -73,7 +73,7 @@ pub(super) fn build_buffers(
             if let Err(e) = built {
                 warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}");
             }
-            timings.add_meshing(start.elapsed());
+            timings.add_meshing_of(slice.tier() as usize, start.elapsed());
         });
 }
 

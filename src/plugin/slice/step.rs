@@ -72,7 +72,7 @@ pub(super) fn step_slices(
                     events: &events,
                 };
                 step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
-                timings.add_simulation(start.elapsed());
+                timings.add_simulation(slice.tier as usize, start.elapsed());
             }
             slice.show(&mut history);
         },

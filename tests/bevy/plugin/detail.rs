@@ -134,6 +134,23 @@ fn tiers_follow_size_on_screen_and_replay_identically() {
             .get(&JellyfishDiagnostics::FAR)
             .and_then(|d| d.value());
         assert_eq!(far, Some(2.0));
+        // Each tier's stepping and meshing is timed, and is a part of the totals.
+        let sum = |p: &DiagnosticPath| store.get(p).map_or(0.0, |d| d.values().sum::<f64>());
+        let tiers = [
+            JellyfishDiagnostics::NEAR_MS,
+            JellyfishDiagnostics::MID_MS,
+            JellyfishDiagnostics::FAR_MS,
+        ]
+        .map(|p| sum(&p));
+        assert!(
+            tiers.iter().all(|ms| *ms > 0.0),
+            "every tier timed: {tiers:?}"
+        );
+        let total = sum(&JellyfishDiagnostics::SIMULATION) + sum(&JellyfishDiagnostics::MESHING);
+        assert!(
+            tiers.iter().sum::<f64>() <= total * (1.0 + 1e-9),
+            "the tiers are parts of the totals: {tiers:?} of {total}"
+        );
         e.iter()
             .map(|e| app.world().get::<Transform>(*e).unwrap().translation)
             .collect::<Vec<_>>()
