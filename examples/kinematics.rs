@@ -5,7 +5,7 @@
 //!
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
-//! margin and height; then the moon jelly and Sarsia at other sizes, every length scaled
+//! margin and height; then each shipped species at other sizes, every length scaled
 //! and the pulse rate set to the animal's at that size. Writes `kinematics.csv` and `kinematics.png`
 //! into `--out` (default `docs/`).
 //!
@@ -210,15 +210,18 @@ fn main() {
     }
 
     // The moon jelly at other sizes and at the recorded animal's; Sarsia over the sizes
-    // Katija et al. (2015) found to swim the same diameters per stroke.
+    // Katija et al. (2015) found to swim the same diameters per stroke; Aequorea from half
+    // to twice its size.
     let aurelia = with_overrides(Species::aurelia(), &overrides);
     let sarsia = with_overrides(Species::sarsia(), &overrides);
+    let aequorea = with_overrides(Species::aequorea(), &overrides);
     let sizes = [0.5, 1.0, 2.0, 155.0 / 40.0];
     let resized_runs = from_rest_all(
         sizes
             .iter()
             .map(|&k| resized(&aurelia, k))
             .chain([0.25, 0.5, 1.0].map(|k| resized(&sarsia, k)))
+            .chain([0.5, 1.0, 2.0].map(|k| resized(&aequorea, k)))
             .collect(),
         strokes,
     );
@@ -341,9 +344,9 @@ fn main() {
             title: "At other sizes, pulse rate as diameter^-1/2".into(),
             x_label: "bell diameter (mm)".into(),
             y_label: "diameters per stroke, under way".into(),
-            series: [&aurelia, &sarsia]
+            series: [&aequorea, &aurelia, &sarsia]
                 .into_iter()
-                .zip([COLORS[1], COLORS[2]])
+                .zip([COLORS[0], COLORS[1], COLORS[2]])
                 .map(|(base, color)| Series {
                     label: base.name.clone(),
                     points: resized_runs
