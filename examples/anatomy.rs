@@ -19,6 +19,8 @@ use std::path::PathBuf;
 
 /// Each jellyfish stands this far from the next, in bell widths: out of the others' views.
 const SPACING: f32 = 40.0;
+/// The phase each jellyfish is shown at: late in its refill, the bell relaxed.
+const RELAXED: f32 = 0.92;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -53,7 +55,8 @@ fn main() {
     });
     println!("rendering offscreen on {}", offscreen.adapter);
     let target = offscreen.world().resource::<OffscreenTarget>().0.clone();
-    spawn_scene(offscreen.world_mut(), target, UVec2::new(width, height));
+    let seconds = frames as f32 / 60.0;
+    spawn_scene(offscreen.world_mut(), target, UVec2::new(width, height), seconds);
     let start = std::time::Instant::now();
     for _ in 0..frames {
         offscreen.update();
@@ -104,7 +107,9 @@ fn extent(species: &Species) -> (f32, f32) {
     )
 }
 
-fn spawn_scene(world: &mut World, target: RenderTarget, size: UVec2) {
+/// Each species' jellyfish, started so that `seconds` later it is relaxed (late in its
+/// refill), as an anatomy plate shows an animal, and its two cameras.
+fn spawn_scene(world: &mut World, target: RenderTarget, size: UVec2, seconds: f32) {
     let cell = UVec2::new(size.x / 3, size.y / 2);
     world.spawn((
         DirectionalLight {
@@ -121,12 +126,13 @@ fn spawn_scene(world: &mut World, target: RenderTarget, size: UVec2) {
         let (middle, span) = (0.5 * (top + bottom), (top - bottom).max(1.2));
         // Bevy's default 45° field of view: the span fills 80% of the height.
         let distance = 1.5 * span;
+        let phase = (RELAXED - seconds * species.contraction_frequency).rem_euclid(1.0);
         let handle = world.resource_mut::<Assets<Species>>().add(species);
         let jellyfish = world
             .spawn((
                 Jellyfish {
                     seed: Some(7),
-                    phase: Some(0.0),
+                    phase: Some(phase),
                     ..Jellyfish::new(handle)
                 },
                 Transform::from_xyz(column as f32 * SPACING, 0.0, 0.0)
