@@ -56,7 +56,12 @@ fn main() {
     println!("rendering offscreen on {}", offscreen.adapter);
     let target = offscreen.world().resource::<OffscreenTarget>().0.clone();
     let seconds = frames as f32 / 60.0;
-    spawn_scene(offscreen.world_mut(), target, UVec2::new(width, height), seconds);
+    spawn_scene(
+        offscreen.world_mut(),
+        target,
+        UVec2::new(width, height),
+        seconds,
+    );
     let start = std::time::Instant::now();
     for _ in 0..frames {
         offscreen.update();

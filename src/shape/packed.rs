@@ -22,10 +22,10 @@
 use super::discs::Disc;
 use super::input::{ShapeError, check};
 use super::mesh::Resolution;
-use super::oral::{self, ORAL_SIDES, OralStyle};
+use super::oral::{self, OralStyle};
 use super::perlin::perlin4;
 use super::profile::Profile;
-use super::tentacles::{self, TentacleLayout};
+use super::tentacles;
 use super::tissue;
 use super::variation::{Variation, apex_fade};
 use crate::sim::SliceView;
@@ -35,8 +35,10 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
 pub(crate) mod layout;
+mod shared;
 mod tubes;
 
+pub use shared::{body, joined, pack_instance};
 pub use tubes::tentacle_vertex;
 
 use layout::*;
@@ -165,6 +167,12 @@ impl ShapePacker {
         header[H_ARM_WAVES] = style.waves;
         header[H_GUIDES] = bits(trails[0].1);
         header[H_ORAL_GUIDES] = bits(trails[1].1);
+        header[H_BODY] = bits(HEADER);
+        header[H_TRAILS] = bits(trail_start(
+            res.rings,
+            res.tentacles.points,
+            oral_discs(&res),
+        ));
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -258,7 +266,7 @@ impl Block<'_> {
     }
 
     fn ring(&self, k: usize) -> usize {
-        HEADER + k * RING
+        self.count(H_BODY) + k * RING
     }
 
     fn rings(&self) -> usize {
@@ -271,17 +279,7 @@ impl Block<'_> {
 
     /// Where the trails start: after the oral discs, if any.
     fn trail_start(&self) -> usize {
-        let oral = if self.count(H_ORAL) > 0 {
-            let layout = TentacleLayout {
-                count: self.count(H_ORAL),
-                sides: ORAL_SIDES,
-                points: self.count(H_ORAL_POINTS),
-            };
-            2 * oral::disc_count(&layout)
-        } else {
-            0
-        };
-        trail_start(self.rings(), self.count(H_POINTS), oral)
+        self.count(H_TRAILS)
     }
 
     /// Node `m` of guide `g` of the trail starting at `start` (a root, not stored, is

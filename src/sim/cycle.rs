@@ -48,6 +48,15 @@ pub struct CycleCache {
     rest_bell: Vec<Vec2>,
 }
 
+impl std::fmt::Debug for CycleCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CycleCache")
+            .field("species", &self.species.name)
+            .field("steps_per_cycle", &self.frames.len())
+            .finish_non_exhaustive()
+    }
+}
+
 impl CycleCache {
     /// Runs `species` from rest until its stroke has settled ([`SETTLED`]) and records the
     /// next cycle: the cost of 10 to 60 cycles of one live slice (0.1 to 1 s).

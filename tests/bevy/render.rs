@@ -20,8 +20,8 @@ use bevy::prelude::*;
 use bevy::render::{Render, RenderApp};
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial, SurfaceMode,
-    SurfacePath,
+    CPU_MESH_TAG, DetailLevels, JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial,
+    SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
 use std::collections::HashSet;
@@ -184,7 +184,8 @@ fn shadow_light(mut commands: Commands) {
 /// the same school at the same moment, rendered both ways, differs only where the CPU's
 /// noise (blended between time knots) and the shader's (exact) part by micrometres. Blended
 /// surfaces are drawn in the same order on both paths (a bell and its tentacles once came in
-/// either order, 47 pixels apart), so a handful of pixels is the limit.
+/// either order, 47 pixels apart), so a handful of pixels is the limit. Two of the six are
+/// far: the shader reads their rings and discs from the recorded step they share.
 #[test]
 fn templates_draw_what_cpu_meshes_draw() {
     let render = |surfaces: SurfaceMode| {
@@ -193,10 +194,16 @@ fn templates_draw_what_cpu_meshes_draw() {
             seed: 5,
         };
         let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
+            // Two of each tier: the far ones share their recorded steps' shapes.
+            let detail = DetailLevels {
+                near: 2,
+                mid: 2,
+                ..default()
+            };
             app.add_plugins(AquariumPlugin {
                 school,
                 surfaces,
-                detail: default(),
+                detail,
             })
             .add_systems(Startup, shadow_light)
             .add_plugins(RenderOrder);
@@ -239,6 +246,14 @@ fn templates_draw_what_cpu_meshes_draw() {
         };
         let now = shot(40, format!("{surfaces:?}.png"));
         let later = shot(6, format!("{surfaces:?}_later.png"));
+        let world = offscreen.world_mut();
+        let mut slices = world.query::<&JellyfishSlice>();
+        let far = slices.iter(world).filter(|s| s.tier() == Tier::Far).count();
+        assert_eq!(
+            far,
+            3 * PER_SPECIES - 4,
+            "near and mid two each, the rest far"
+        );
         let path = *offscreen.world().resource::<SurfacePath>();
         glow_layers_follow_their_umbrellas(offscreen.world_mut(), path);
         assert!(

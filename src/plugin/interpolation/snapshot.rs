@@ -2,10 +2,11 @@
 //! distance swum, the time and the jellyfish's pose.
 
 use crate::plugin::swimming::Pose;
-use crate::sim::cycle::CycleFrame;
+use crate::sim::cycle::CycleCache;
 use crate::sim::guides::Trail;
 use crate::sim::{SliceSim, SliceView};
 use bevy::math::{Vec2, Vec3};
+use std::sync::Arc;
 
 /// One step's slice, relative to the bell's centroid so that the box following the bell
 /// never shows.
@@ -24,6 +25,9 @@ pub(crate) struct Snapshot {
     pub time: f64,
     /// The jellyfish's pose in the world after the step.
     pub pose: Pose,
+    /// The recorded cycle and the step of it this shape is, exactly (a far jellyfish's,
+    /// not faded into another shape): far jellyfish showing it share its packed shape.
+    pub recorded: Option<(Arc<CycleCache>, u32)>,
 }
 
 impl Snapshot {
@@ -45,6 +49,7 @@ impl Snapshot {
         }
         self.swim = sim.swim_distance();
         self.time = sim.clock().time();
+        self.recorded = None;
     }
 
     /// `self = a + t·(b − a)`, point by point; `b` alone where the shapes differ.
@@ -82,13 +87,17 @@ impl Snapshot {
             );
         }
         self.centroid = Vec2::ZERO;
+        self.recorded = None;
         self.swim = a.swim + t * (b.swim - a.swim);
         self.time = a.time + t as f64 * (b.time - a.time);
         self.pose = a.pose.blend(&b.pose, t);
     }
 
-    /// The recorded cycle's frame, at slice time `time` and swim distance `swim`.
-    pub fn copy_frame(&mut self, frame: &CycleFrame, time: f64, swim: f32) {
+    /// Step `index` of the recorded `cycle`, at slice time `time` and swim distance
+    /// `swim`.
+    pub fn copy_frame(&mut self, cycle: &Arc<CycleCache>, index: u32, time: f64, swim: f32) {
+        let frame = cycle.frame(index);
+        self.recorded = Some((cycle.clone(), index));
         self.bell.clone_from(&frame.bell);
         let chains = frame.tentacles.iter().chain(&frame.oral_arms);
         for (out, chain) in self
@@ -114,6 +123,9 @@ impl Snapshot {
 
     /// `self += weight · other`, point by point, where the shapes match.
     pub fn add(&mut self, other: &Snapshot, weight: f32) {
+        if weight != 0.0 {
+            self.recorded = None;
+        }
         let add = |a: &mut Vec<Vec2>, b: &[Vec2]| {
             if a.len() == b.len() {
                 a.iter_mut().zip(b).for_each(|(a, b)| *a += weight * *b);

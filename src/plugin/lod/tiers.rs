@@ -135,7 +135,7 @@ fn switch_cycle(slice: &mut JellyfishSlice, history: &mut SliceHistory, cache: A
         .retimed(species.period(), species.steps_per_cycle());
     let mut now = Snapshot::default();
     let time = replay.clock.time();
-    now.copy_frame(cache.frame(replay.index()), time, replay.swim as f32);
+    now.copy_frame(&cache, replay.index(), time, replay.swim as f32);
     history.change_tier(&now, time, fade(&replay.clock));
     slice.rest_bell = cache.rest_bell().to_vec();
     replay.cache = cache;
@@ -180,7 +180,7 @@ fn move_to(
             wanted: None,
             escape,
         };
-        now.copy_frame(cache.frame(index), replay.clock.time(), 0.0);
+        now.copy_frame(&cache, index, replay.clock.time(), 0.0);
         motion.swum = 0.0;
         history.change_tier(&now, replay.clock.time(), fade);
         slice.sim = None;

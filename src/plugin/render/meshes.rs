@@ -42,6 +42,10 @@ pub struct JellyfishMeshes {
     pub(crate) buffers: JellyMesh,
     /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
     pub(crate) block: Vec<f32>,
+    /// A far jellyfish's recorded step, packed once for all that show it: `block` is then
+    /// only its header and trails, and reads its rings and discs from here.
+    #[reflect(ignore)]
+    pub(crate) shared: Option<std::sync::Arc<[f32]>>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     pub(crate) slot: Option<u32>,

@@ -10,6 +10,7 @@ mod materials;
 mod meshes;
 mod patterns;
 mod rebuild;
+mod recorded;
 mod templates;
 mod tissue;
 
@@ -40,6 +41,7 @@ impl Plugin for JellyfishRenderPlugin {
             .register_type::<JellyfishMeshes>()
             .register_type::<JellyfishTentacles>()
             .register_type::<JellyfishGlow>()
+            .init_resource::<recorded::RecordedFrames>()
             .add_systems(
                 PostUpdate,
                 (

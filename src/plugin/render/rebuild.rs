@@ -6,11 +6,13 @@ use super::culling::{active_frusta, seen, slice_bounds};
 use super::meshes::{
     CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
 };
+use super::recorded::{RecordedFrames, shown_step};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
+use crate::plugin::slice::Tier;
 use crate::plugin::timings::JellyfishTimings;
-use crate::shape::{self, SurfaceBuffers};
+use crate::shape::{self, SurfaceBuffers, packed};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::camera::visibility::NoAutoAabb;
@@ -18,9 +20,9 @@ use bevy::mesh::{Indices, MeshTag, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use std::time::Instant;
 
-/// The CPU-heavy half, in parallel: blend the steps around the frame's time, bound them,
-/// and build the surfaces (CPU meshes) or pack the shapes (templates) of the jellyfish a
-/// camera sees.
+/// The CPU-heavy half, in parallel: blend the steps around the frame's time (a far
+/// jellyfish shows the nearer recorded step), bound them, and build the surfaces (CPU
+/// meshes) or pack the shapes (templates) of the jellyfish a camera sees.
 pub(super) fn build_buffers(
     mut jellyfish: Query<(
         &JellyfishSlice,
@@ -31,8 +33,10 @@ pub(super) fn build_buffers(
     cameras: Query<(&Camera, &Frustum)>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
+    recorded: Res<RecordedFrames>,
 ) {
     let frusta = active_frusta(&cameras);
+    recorded.prune();
     jellyfish
         .par_iter_mut()
         .for_each(|(slice, history, mut meshes, transform)| {
@@ -44,7 +48,12 @@ pub(super) fn build_buffers(
             let Some((a, b, t)) = history.shown() else {
                 return;
             };
-            meshes.blended.blend(a, b, t);
+            let far = slice.tier() == Tier::Far;
+            let step = far.then(|| shown_step(a, b, t));
+            match step {
+                Some(step) => meshes.blended.blend(step, step, 0.0),
+                None => meshes.blended.blend(a, b, t),
+            }
             let bounds = slice_bounds(&meshes.blended, &slice.species);
             meshes.bounds = Some(bounds);
             meshes.seen = seen(&frusta, &bounds, &transform.affine());
@@ -57,13 +66,37 @@ pub(super) fn build_buffers(
             let res = settings.resolution(&slice.species);
             let view = meshes.blended.view(&slice.rest_bell);
             let (seed, time) = (slice.seed, meshes.blended.time as f32);
-            let built = if templates {
-                let JellyfishMeshes { packer, block, .. } = meshes;
+            let JellyfishMeshes {
+                packer,
+                block,
+                shared,
+                ..
+            } = meshes;
+            let step = step.and_then(|s| s.recorded.as_ref());
+            let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
+                recorded.step(cache, *index, &slice.species, res, || {
+                    let mut packed = Vec::new();
+                    packer
+                        .pack(&view, &slice.species, res, seed, time, &mut packed)
+                        .ok()
+                        .map(|()| packed)
+                })
+            });
+            let built = if let Some(frame) = recorded_step {
+                block.clear();
+                let (trail, oral) = (view.trail, view.oral_trail);
+                let species = &slice.species;
+                packed::pack_instance(&frame, species, &res, seed, time, trail, oral, block);
+                *shared = Some(frame);
+                Ok(())
+            } else if templates {
                 let mut packed = std::mem::take(block);
                 packed.clear();
                 let result = packer.pack(&view, &slice.species, res, seed, time, &mut packed);
+                // On an error the last frame stays, its shared step with it.
                 if result.is_ok() || block.is_empty() {
                     *block = packed;
+                    *shared = None;
                 }
                 result
             } else {

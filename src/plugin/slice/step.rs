@@ -184,7 +184,7 @@ impl Step<'_> {
                 });
                 let (time, swim) = (clock.time(), replay.swim as f32);
                 history.record(clock, frame, motion.pose, |s| {
-                    s.copy_frame(cycle, time, swim);
+                    s.copy_frame(&replay.cache, replay.index(), time, swim);
                     let (fringe, oral) = trail.unwrap_or_default();
                     s.set_trail(fringe, oral);
                 });

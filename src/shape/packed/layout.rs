@@ -132,8 +132,16 @@ layout! {
         /// Guide chains of the oral tubes (one per tube, or none), stored after the
         /// fringe's.
         H_ORAL_GUIDES = 34;
+        /// Where the rings start (the tentacle and oral discs follow them). In a block as
+        /// packed, from the block's start: `HEADER`. In the shape buffer, from the
+        /// buffer's start: the upload adds the block's start, or points a far
+        /// jellyfish's block at its recorded frame's rings, shared by every far jellyfish
+        /// showing that frame.
+        H_BODY = 35;
+        /// Where the trails start, read as `H_BODY` is.
+        H_TRAILS = 36;
         /// Header length.
-        HEADER = 35;
+        HEADER = 37;
         /// The `MeshTag` of a CPU mesh wearing the template material: the vertex shader
         /// draws its vertices as they are (no slot is this large).
         CPU_MESH_TAG = u32::MAX as usize;

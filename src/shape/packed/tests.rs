@@ -213,3 +213,55 @@ fn a_block_is_a_few_kilobytes() {
         "{bytes} bytes for {vertices} vertices"
     );
 }
+
+/// A far jellyfish's block (its header and trails) joined to the rings and discs its
+/// recorded frame shares is, bit for bit, the block packed for it alone: whichever
+/// individual, noise time and trails packed the shared frame.
+#[test]
+fn a_shared_frame_with_its_own_header_is_its_own_block() {
+    let species = Species::aequorea();
+    let res = Resolution::of(&species);
+    let mut slice = SliceOutline::contracted(&species, 31, 12, 0.4);
+    let trail = |scale: f32| -> Vec<Vec3> {
+        (0..species.guide_count() * GUIDE_NODES)
+            .map(|k| {
+                let m = (k % GUIDE_NODES) as f32;
+                halves(Vec3::new(scale * m, 0.0, -0.5 * scale * m))
+            })
+            .collect()
+    };
+    let pack = |slice: &SliceOutline, seed: u32, time: f32| {
+        let mut block = Vec::new();
+        ShapePacker::default()
+            .pack(&slice.view(), &species, res, seed, time, &mut block)
+            .unwrap();
+        block
+    };
+    // The frame packed by one individual in still water.
+    slice.trail = vec![Vec3::ZERO; species.guide_count() * GUIDE_NODES];
+    let frame = pack(&slice, 1, 0.0);
+    for (seed, time, scale) in [(1, 0.0, 0.0), (7, 3.25, 0.001), (99, 400.0, 0.003)] {
+        slice.trail = trail(scale);
+        let own = pack(&slice, seed, time);
+        let view = slice.view();
+        let mut instance = Vec::new();
+        pack_instance(
+            &frame,
+            &species,
+            &res,
+            seed,
+            time,
+            view.trail,
+            view.oral_trail,
+            &mut instance,
+        );
+        assert!(instance.len() < HEADER + species.guide_count() * TRAIL + 1);
+        let joined = joined(&instance, &frame);
+        assert_eq!(
+            joined.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            own.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            "seed {seed} at {time} s"
+        );
+        assert_eq!(body(&own), body(&frame));
+    }
+}

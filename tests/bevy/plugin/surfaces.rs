@@ -176,6 +176,40 @@ fn templates_share_one_mesh_and_send_kilobytes_not_meshes() {
     assert_eq!(app.world().get::<MeshTag>(e).unwrap().0, freed);
 }
 
+/// Far jellyfish replay their species' recorded steps, so those showing the same step
+/// share its rings and discs: the renderer gets one copy of the step and, from each, its
+/// header and trails. Near, each jellyfish sends its whole shape.
+#[test]
+fn far_jellyfish_share_the_recorded_steps_they_show() {
+    let bytes_per_jellyfish = |near: usize| {
+        let mut app = template_app();
+        app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+            near,
+            mid: 0,
+            ..default()
+        };
+        let h = add_species(&mut app, species());
+        // In step: each shows the same recorded step as the others.
+        for i in 0..6 {
+            let at = Transform::from_xyz(2.0 * i as f32, 0.0, 0.0);
+            app.world_mut()
+                .spawn((Jellyfish::new(h.clone()).with_phase(0.25), at));
+        }
+        run(&mut app, 40);
+        let mut q = app.world_mut().query::<&JellyfishSlice>();
+        let far = q
+            .iter(app.world())
+            .filter(|s| s.tier() == Tier::Far)
+            .count();
+        assert_eq!(far, 6 - near, "near {near}");
+        mesh_data_bytes(&app) / 6.0
+    };
+    let (near, far) = (bytes_per_jellyfish(6), bytes_per_jellyfish(0));
+    println!("{near:.0} bytes a frame per near jellyfish, {far:.0} per far one");
+    assert!(near > 1000.0, "{near}");
+    assert!(far < 0.4 * near, "far {far}, near {near}");
+}
+
 #[test]
 fn switching_surfaces_moves_living_jellyfish_between_paths() {
     let mut app = template_app();

@@ -131,6 +131,7 @@ pub(crate) fn set_up(
         let slot = slots.take(entity);
         meshes.slot = Some(slot);
         meshes.block.clear();
+        meshes.shared = None;
         let template = templates.get(res, slice, &mut assets);
         commands
             .entity(entity)

@@ -242,7 +242,7 @@ fn apex_fade(latitude: f32) -> f32 {
 }
 
 fn ring_at(base: u32, k: u32) -> u32 {
-    return base + packed::HEADER + k * packed::RING;
+    return count(base, packed::H_BODY) + k * packed::RING;
 }
 
 fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
@@ -406,14 +406,9 @@ fn half_to_f32(bits: u32) -> f32 {
     return bitcast<f32>(((bits & 0x8000u) << 16u) | ((exponent + 112u) << 23u) | (mantissa << 13u));
 }
 
-// packed::Block::trail_start: the trails follow the oral discs, if any.
+// packed::Block::trail_start.
 fn trail_start(base: u32) -> u32 {
-    var oral = 0u;
-    if count(base, packed::H_ORAL) > 0u {
-        oral = 2u * oral_disc_count(count(base, packed::H_ORAL_POINTS));
-    }
-    return ring_at(base, count(base, packed::H_RINGS) + 1u)
-        + (count(base, packed::H_POINTS) + oral) * packed::DISC;
+    return count(base, packed::H_TRAILS);
 }
 
 // sim::guides::along: guide g's offset `fraction` of the way down, linear between nodes.

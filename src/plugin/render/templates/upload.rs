@@ -2,12 +2,19 @@
 //!
 //! Two storage buffers: `offsets[slot]` is where slot's block starts in `shapes`. A
 //! jellyfish keeps its slot for life (its `MeshTag`), so jellyfish coming and going never
-//! re-tag the others. The buffers grow by a quarter when they must, never shrink, and keep
-//! their size between frames so Bevy writes them in place; a growth rebinds the materials.
+//! re-tag the others. Far jellyfish showing the same recorded step share its rings and
+//! discs, written once; each block's `H_BODY` and `H_TRAILS` say where its rings and trails
+//! start in `shapes`. The buffers grow by a quarter when they must, shrink when less than
+//! half used (far jellyfish need far less than near ones), and otherwise keep their size
+//! between frames so Bevy writes them in place; a new size rebinds the materials.
 
 use super::material::SurfaceMaterial;
 use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
 use crate::plugin::timings::JellyfishTimings;
+use crate::shape::packed::{
+    self,
+    layout::{H_BODY, H_TRAILS, HEADER},
+};
 use bevy::asset::RenderAssetUsages;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -84,6 +91,7 @@ pub(crate) fn upload(
     materials: Option<ResMut<Assets<SurfaceMaterial>>>,
     timings: Res<JellyfishTimings>,
     mut offsets: Local<Vec<u32>>,
+    mut bodies: Local<HashMap<usize, u32>>,
 ) {
     let (Some(mut buffers), Some(mut assets)) = (buffers, assets) else {
         return;
@@ -94,20 +102,39 @@ pub(crate) fn upload(
     // Gathered straight into the bytes handed to the renderer (each frame's go to the
     // render world): one copy of a few megabytes a frame, not two.
     let mut shapes: Vec<u8> = Vec::with_capacity(4 * buffers.capacity.1);
+    bodies.clear();
     for meshes in &jellyfish {
         if meshes.path == Some(SurfacePath::Templates)
             && let Some(slot) = meshes.slot
             && !meshes.block.is_empty()
         {
-            offsets[slot as usize] = (shapes.len() / 4) as u32;
+            // A far jellyfish's recorded step: its rings and discs once for all.
+            let body = meshes.shared.as_ref().map(|frame| {
+                *bodies.entry(frame.as_ptr() as usize).or_insert_with(|| {
+                    let at = (shapes.len() / 4) as u32;
+                    extend_words(&mut shapes, packed::body(frame));
+                    at
+                })
+            });
+            let start = (shapes.len() / 4) as u32;
+            offsets[slot as usize] = start;
             extend_words(&mut shapes, &meshes.block);
+            // Where its rings and trails start, from the buffer's start.
+            let word = |at: usize| meshes.block[at].to_bits();
+            let (rings, trails) = match body {
+                Some(body) => (body, start + HEADER as u32),
+                None => (start + word(H_BODY), start + word(H_TRAILS)),
+            };
+            set_word(&mut shapes, start as usize + H_BODY, rings);
+            set_word(&mut shapes, start as usize + H_TRAILS, trails);
         }
     }
     if shapes.is_empty() {
         return;
     }
+    // Room for a quarter more than needed; kept while it is at least half used.
     let grow = |needed: usize, now: usize| {
-        if needed > now {
+        if needed > now || 2 * needed < now {
             needed + needed / 4
         } else {
             now
@@ -137,7 +164,7 @@ pub(crate) fn upload(
             buffer.data = Some(data);
         }
     }
-    // A grown buffer is a new GPU buffer: rebuild the materials' bind groups.
+    // A resized buffer is a new GPU buffer: rebuild the materials' bind groups.
     if grown && let Some(mut materials) = materials {
         let ids: Vec<_> = materials.ids().collect();
         for id in ids {
@@ -146,6 +173,11 @@ pub(crate) fn upload(
     }
     timings.add_mesh_bytes(total);
     timings.add_meshing(start.elapsed());
+}
+
+/// Sets word `at` of `bytes` to `value`, as the GPU reads it.
+fn set_word(bytes: &mut [u8], at: usize, value: u32) {
+    bytes[4 * at..4 * at + 4].copy_from_slice(&value.to_le_bytes());
 }
 
 /// Appends `words` as the GPU reads them, little-endian: on such a host, the memory as is.

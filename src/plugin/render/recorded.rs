@@ -1,0 +1,100 @@
+//! The far tier's recorded frames, packed once each.
+//!
+//! Every far jellyfish of a species plays the same recorded cycle, and a frame shows one
+//! of its steps (the nearest, not a blend: [`shown_step`]). So the step's shape is packed
+//! the first time a far jellyfish shows it, and every far jellyfish showing that step
+//! shares its rings and discs (`shape::packed::pack_instance`): its own block is a header
+//! and its trails, a few hundred bytes instead of a few kilobytes, and packing it costs a
+//! copy instead of a profile.
+
+use crate::plugin::interpolation::Snapshot;
+use crate::shape::mesh::Resolution;
+use crate::sim::cycle::CycleCache;
+use crate::species::Species;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+use std::sync::{Arc, OnceLock, RwLock, Weak};
+
+/// Each recorded cycle's steps as packed blocks, by cycle and resolution.
+#[derive(Resource, Default)]
+pub(crate) struct RecordedFrames {
+    cycles: RwLock<HashMap<(usize, Resolution), Arc<PackedCycle>>>,
+}
+
+/// One cycle's packed steps, for the species they were packed with.
+struct PackedCycle {
+    /// Keeps the cycle's allocation, so no other cycle takes its address (the key) while
+    /// this entry lives; gone when no jellyfish plays it.
+    cache: Weak<CycleCache>,
+    species: Species,
+    /// `None` where the step could not be packed.
+    steps: Vec<OnceLock<Option<Arc<[f32]>>>>,
+}
+
+impl RecordedFrames {
+    /// Step `index` of `cache` packed for `species` at `res`: `pack` packs it the first
+    /// time (any seed and time; `None` if it cannot).
+    pub(crate) fn step(
+        &self,
+        cache: &Arc<CycleCache>,
+        index: u32,
+        species: &Species,
+        res: Resolution,
+        pack: impl FnOnce() -> Option<Vec<f32>>,
+    ) -> Option<Arc<[f32]>> {
+        let key = (Arc::as_ptr(cache) as usize, res);
+        let current = |c: &Arc<PackedCycle>| c.species == *species;
+        let known = self
+            .cycles
+            .read()
+            .ok()?
+            .get(&key)
+            .filter(|c| current(c))
+            .cloned();
+        let cycle = match known {
+            Some(cycle) => cycle,
+            None => {
+                let mut cycles = self.cycles.write().ok()?;
+                let entry = cycles
+                    .entry(key)
+                    .or_insert_with(|| PackedCycle::new(cache, species));
+                // A species edited without a new recording (its looks): pack again.
+                if !current(entry) {
+                    *entry = PackedCycle::new(cache, species);
+                }
+                entry.clone()
+            }
+        };
+        cycle
+            .steps
+            .get(index as usize)?
+            .get_or_init(|| pack().map(Arc::from))
+            .clone()
+    }
+
+    /// Forgets the cycles no jellyfish plays any more.
+    pub(crate) fn prune(&self) {
+        if let Ok(mut cycles) = self.cycles.write() {
+            cycles.retain(|_, c| c.cache.strong_count() > 0);
+        }
+    }
+}
+
+impl PackedCycle {
+    fn new(cache: &Arc<CycleCache>, species: &Species) -> Arc<Self> {
+        Arc::new(Self {
+            cache: Arc::downgrade(cache),
+            species: species.clone(),
+            steps: (0..cache.steps_per_cycle())
+                .map(|_| OnceLock::new())
+                .collect(),
+        })
+    }
+}
+
+/// The step a far jellyfish shows of the two around its frame's time, `t` of the way
+/// between them: the nearer. A recorded step is shared, a blend of two is not; the frame
+/// shows the step's shape at most half a step early or late.
+pub(crate) fn shown_step<'a>(a: &'a Snapshot, b: &'a Snapshot, t: f32) -> &'a Snapshot {
+    if t < 0.5 { a } else { b }
+}
