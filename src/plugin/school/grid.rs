@@ -35,6 +35,20 @@ impl Neighbours {
         grid
     }
 
+    /// Whether cube `key` can hold a point within `reach` of `p`: its box comes that near
+    /// (with a little slack for rounding). The outermost cubes hold every place beyond
+    /// them (see `key`), so they always can.
+    fn may_hold(&self, key: IVec3, p: Vec3, reach: f32) -> bool {
+        if key.abs().max_element() >= 1_000_000 {
+            return true;
+        }
+        let lo = key.as_vec3() * self.cell;
+        let hi = lo + Vec3::splat(self.cell);
+        let gap = (lo - p).max(p - hi).max(Vec3::ZERO);
+        let reach = reach + 1e-3 * self.cell;
+        !(gap.length_squared() > reach * reach)
+    }
+
     fn key(&self, p: Vec3) -> IVec3 {
         // Far-off or non-finite places share the outermost cubes: still found, never lost.
         (p / self.cell)
@@ -137,7 +151,17 @@ impl Neighbours {
                     // Inside the shell's rim only its two faces along z.
                     let step = if rim { 1 } else { 2 * r as usize };
                     for z in (-r..=r).step_by(step) {
-                        if let Some(indices) = self.buckets.get(&(centre + IVec3::new(x, y, z))) {
+                        // A cube wholly beyond the reach, or beyond the k-th found, holds
+                        // nothing to keep (the shell's corners reach √3 times as far).
+                        let key = centre + IVec3::new(x, y, z);
+                        let reach = match out.len() == k {
+                            true => out.last().map_or(most, |&(d, _)| d.min(most)),
+                            false => most,
+                        };
+                        if !self.may_hold(key, p, reach) {
+                            continue;
+                        }
+                        if let Some(indices) = self.buckets.get(&key) {
                             indices.iter().for_each(|i| offer(out, *i));
                         }
                     }
