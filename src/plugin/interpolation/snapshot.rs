@@ -93,6 +93,23 @@ impl Snapshot {
         self.pose = a.pose.blend(&b.pose, t);
     }
 
+    /// `self = step`, as [`Self::blend`] of `step` with itself would give it, without the
+    /// arithmetic (a far jellyfish shows a recorded step as it is).
+    pub fn copy_step(&mut self, step: &Snapshot) {
+        self.bell.clone_from(&step.bell);
+        self.trail.clone_from(&step.trail);
+        self.oral_trail.clone_from(&step.oral_trail);
+        for side in 0..2 {
+            self.tentacles[side].clone_from(&step.tentacles[side]);
+            self.oral_arms[side].clone_from(&step.oral_arms[side]);
+        }
+        self.centroid = Vec2::ZERO;
+        self.recorded = None;
+        self.swim = step.swim;
+        self.time = step.time;
+        self.pose = step.pose;
+    }
+
     /// Step `index` of the recorded `cycle`, at slice time `time` and swim distance
     /// `swim`.
     pub fn copy_frame(&mut self, cycle: &Arc<CycleCache>, index: u32, time: f64, swim: f32) {

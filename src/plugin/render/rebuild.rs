@@ -51,7 +51,7 @@ pub(super) fn build_buffers(
             let far = slice.tier() == Tier::Far;
             let step = far.then(|| shown_step(a, b, t));
             match step {
-                Some(step) => meshes.blended.blend(step, step, 0.0),
+                Some(step) => meshes.blended.copy_step(step),
                 None => meshes.blended.blend(a, b, t),
             }
             let bounds = slice_bounds(&meshes.blended, &slice.species);
