@@ -46,7 +46,9 @@ impl Neighbours {
         let hi = lo + Vec3::splat(self.cell);
         let gap = (lo - p).max(p - hi).max(Vec3::ZERO);
         let reach = reach + 1e-3 * self.cell;
-        !(gap.length_squared() > reach * reach)
+        // A place that is not finite is never ruled out.
+        let d2 = gap.length_squared();
+        d2 <= reach * reach || d2.is_nan()
     }
 
     fn key(&self, p: Vec3) -> IVec3 {
