@@ -129,13 +129,7 @@ impl ShapePacker {
             margin,
             &mut self.discs,
         );
-        let trails = [
-            (view.trail, trailing(view.trail, res.guides)),
-            (
-                view.oral_trail,
-                trailing(view.oral_trail, oral_guides(&res)),
-            ),
-        ];
+        let trails = carried_trails(view.trail, view.oral_trail, &res);
         let start = out.len();
         out.resize(start + HEADER, 0.0);
         let header = &mut out[start..];
@@ -205,17 +199,34 @@ impl ShapePacker {
             out.resize(at + DISC, 0.0);
             write_disc(&mut out[at..], disc);
         }
-        // The trails, as halves, two to a value.
-        for (trail, guides) in trails {
-            for nodes in trail.offsets.chunks_exact(GUIDE_NODES).take(guides) {
-                write_halves(&nodes[1..], out);
-            }
-        }
+        write_trails(trails, out);
         debug_assert_eq!(
             out.len() - start,
             trailing_block_len(&res, trails[0].1, trails[1].1)
         );
         Ok(())
+    }
+}
+
+/// The fringe's and the oral tubes' trails, each with the guides of it the block
+/// carries ([`trailing`]).
+fn carried_trails<'a>(
+    fringe: Trail<'a>,
+    oral: Trail<'a>,
+    res: &Resolution,
+) -> [(Trail<'a>, usize); 2] {
+    [
+        (fringe, trailing(fringe, res.guides)),
+        (oral, trailing(oral, oral_guides(res))),
+    ]
+}
+
+/// Appends the carried guides of each trail, as halves, two to a value.
+fn write_trails(trails: [(Trail, usize); 2], out: &mut Vec<f32>) {
+    for (trail, guides) in trails {
+        for nodes in trail.offsets.chunks_exact(GUIDE_NODES).take(guides) {
+            write_halves(&nodes[1..], out);
+        }
     }
 }
 

@@ -7,10 +7,10 @@
 //! ([`pack_instance`]), and the upload points its `H_BODY` at the frame's body.
 
 use super::layout::*;
-use super::{Block, oral_guides, trailing, write_halves};
+use super::{Block, carried_trails, write_trails};
 use crate::shape::mesh::Resolution;
 use crate::shape::variation::Variation;
-use crate::sim::guides::{GUIDE_NODES, Trail};
+use crate::sim::guides::Trail;
 use crate::species::Species;
 
 /// The rings and the tentacle and oral discs of a block as packed: what every far
@@ -37,10 +37,7 @@ pub fn pack_instance(
     out: &mut Vec<f32>,
 ) {
     let variation = Variation::new(species, seed, time);
-    let trails = [
-        (trail, trailing(trail, res.guides)),
-        (oral_trail, trailing(oral_trail, oral_guides(res))),
-    ];
+    let trails = carried_trails(trail, oral_trail, res);
     let bits = |v: usize| f32::from_bits(v as u32);
     let start = out.len();
     out.extend_from_slice(&frame[..HEADER]);
@@ -52,11 +49,7 @@ pub fn pack_instance(
     header[H_ORAL_GUIDES] = bits(trails[1].1);
     header[H_BODY] = bits(0);
     header[H_TRAILS] = bits(HEADER);
-    for (trail, guides) in trails {
-        for nodes in trail.offsets.chunks_exact(GUIDE_NODES).take(guides) {
-            write_halves(&nodes[1..], out);
-        }
-    }
+    write_trails(trails, out);
 }
 
 /// A far jellyfish's `instance` ([`pack_instance`]) with the rings and discs of its
