@@ -2,7 +2,7 @@
 //! from each face (Stam 1999), optionally corrected by MacCormack's forward–backward
 //! step or sampled by a limited bicubic (see [`Advection`]).
 
-use super::sampling::{cell, cubic_sample, cubic_sample4, linear_sample, trace};
+use super::sampling::{cell, cubic_sample, cubic_sample4, linear_sample, linear_sample4, trace};
 use super::symmetry::mirror;
 use super::{Advection, Fluid};
 
@@ -132,10 +132,18 @@ fn sweep<const MODE: u8>(
             let cv = s * 0.25 * (v0[i - 1] + v0[i] + v1[i - 1] + v1[i]);
             (cell(i) - cu, cell(j) - cv)
         };
+        // The same, four faces at a time.
+        let feet = |i: usize| {
+            let (w, a, b) = (&u_row[i..][..4], &v0[i - 1..][..5], &v1[i - 1..][..5]);
+            let x = std::array::from_fn(|k| cell(i + k) - s * w[k]);
+            let y =
+                std::array::from_fn(|k| cell(j) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1]));
+            (x, y)
+        };
         let faces = 1..traced.min(n);
         let out = &mut out_u[row..][..n + 1];
         let bounds = bounds_u.as_deref_mut().map(|b| &mut b[row..][..n + 1]);
-        trace_row::<MODE>(src[0], [n + 1, n], faces, foot, out, bounds);
+        trace_row::<MODE>(src[0], [n + 1, n], faces, (foot, feet), out, bounds);
     }
     // v faces, n × (n + 1), the open ends included: each one's own v, and u averaged
     // likewise (from the one row there is at the ends).
@@ -152,9 +160,17 @@ fn sweep<const MODE: u8>(
             let cu = s * 0.25 * (u0[i] + u0[i + 1] + u1[i] + u1[i + 1]);
             (cell(i) - cu, cell(j) - cv)
         };
+        let feet = |i: usize| {
+            let (w, a, b) = (&v_row[i..][..4], &u0[i..][..5], &u1[i..][..5]);
+            let x = std::array::from_fn(|k| {
+                cell(i + k) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1])
+            });
+            let y = std::array::from_fn(|k| cell(j) - s * w[k]);
+            (x, y)
+        };
         let out = &mut out_v[row..][..n];
         let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
-        trace_row::<MODE>(src[1], [n, n + 1], 0..traced, foot, out, bounds);
+        trace_row::<MODE>(src[1], [n, n + 1], 0..traced, (foot, feet), out, bounds);
     }
     if traced < n {
         mirror(out_u, out_v, bounds_u, bounds_v, n);
@@ -162,27 +178,33 @@ fn sweep<const MODE: u8>(
 }
 
 /// Samples `field` (`[nx, ny]` columns and rows) at the foot of each face in `faces` of
-/// one row, into `out` (and the corners' range into `bounds`, for MacCormack). The
-/// bicubic, half of *Sarsia*'s slice one by one, takes four faces at a time, whose
-/// arithmetic the compiler vectorises: the same bits, a fifth off the slice. Bilinear
-/// gained nothing from it (waiting on loads, not arithmetic, bounds it).
+/// one row, into `out` (and the corners' range into `bounds`, for MacCormack). Bilinear
+/// and bicubic take four faces at a time (`feet`), whose arithmetic compiles to four-wide
+/// vector instructions: the same bits as one at a time (`foot`), the bicubic a fifth off
+/// *Sarsia*'s slice, the bilinear a seventh off the moon jelly's.
 fn trace_row<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
     faces: std::ops::Range<usize>,
-    foot: impl Fn(usize) -> (f32, f32),
+    (foot, feet): (
+        impl Fn(usize) -> (f32, f32),
+        impl Fn(usize) -> ([f32; 4], [f32; 4]),
+    ),
     out: &mut [f32],
     mut bounds: Option<&mut [(f32, f32)]>,
 ) {
-    if MODE == CUBIC && faces.len() >= 4 {
+    if MODE != BOUNDED && faces.len() >= 4 {
         // The last four end the row, overlapping the four before where the count is not
         // a multiple of four (those faces get the same value again).
         let mut i = faces.start;
         loop {
             let at = i.min(faces.end - 4);
-            let feet: [(f32, f32); 4] = std::array::from_fn(|k| foot(at + k));
-            let (x, y) = (feet.map(|f| f.0), feet.map(|f| f.1));
-            out[at..][..4].copy_from_slice(&cubic_sample4(field, nx, ny, x, y));
+            let (x, y) = feet(at);
+            let four = match MODE {
+                CUBIC => cubic_sample4(field, nx, ny, x, y),
+                _ => linear_sample4(field, nx, ny, x, y),
+            };
+            out[at..][..4].copy_from_slice(&four);
             if at + 4 == faces.end {
                 return;
             }
