@@ -20,13 +20,13 @@ impl Fluid {
         if alpha.is_nan() || alpha <= 0.0 {
             return;
         }
-        if let Some(rings) = self.rings.take() {
+        if let Some(mut rings) = self.rings.take() {
             // The same cap on the viscosity as the plane's, in sweeps half as long.
             let most = MAX_DIFFUSION_SWEEPS * 2;
             let substeps = ((alpha / RINGS_SWEEP_LIMIT).ceil() as usize).clamp(1, most);
             let a = (alpha / substeps as f32).min(RINGS_SWEEP_LIMIT);
             for _ in 0..substeps {
-                self.ring_viscosity_sweep(&rings, a);
+                self.ring_viscosity_sweep(&mut rings, a);
             }
             self.rings = Some(rings);
             return;

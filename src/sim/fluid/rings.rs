@@ -44,6 +44,8 @@ pub(crate) struct Rings {
     solver: RingPoissonSolver,
     /// φ row by row across the radius, the wall first (the projection's work space).
     across: Vec<f32>,
+    /// One row of the viscous sweep's fluxes (its work space).
+    flux: Vec<f32>,
 }
 
 /// Largest `ν·dt/h²` of one explicit sweep of the r–z viscous operator: its stiffest mode,
@@ -75,13 +77,14 @@ impl Rings {
             no_slip_wall: false,
             solver: RingPoissonSolver::new(c + 1, n, h),
             across: vec![0.0; (c + 1) * n],
+            flux: vec![0.0; c + 1],
         }
     }
 
     /// Heap bytes.
     pub(crate) fn bytes(&self) -> usize {
-        (self.face.len() + self.cell.len() + self.inverse_cell.len() + self.across.len()) * 4
-            + self.solver.bytes()
+        let rows = self.face.len() + self.cell.len() + self.inverse_cell.len();
+        (rows + self.across.len() + self.flux.len()) * 4 + self.solver.bytes()
     }
 }
 
@@ -150,23 +153,25 @@ impl Fluid {
     /// `v` by the r-weighted Laplacian; free slip at the outer wall, zero gradient at the
     /// open ends, as in the plane. Only the faces just past the axis are mirrored after
     /// it (the next sweep reads them); the projection mirrors the rest.
-    pub(super) fn ring_viscosity_sweep(&mut self, rings: &Rings, a: f32) {
+    pub(super) fn ring_viscosity_sweep(&mut self, rings: &mut Rings, a: f32) {
         let (n, c) = (self.n, rings.solved - 1);
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
+        // Each loop without a branch or a carried value, so that it vectorises.
+        let flux = &mut rings.flux[..c + 1];
         for j in 0..n {
             let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n - 1));
             let below = &self.u[jm * (n + 1)..][..c + 2];
             let here = &self.u[j * (n + 1)..][..c + 2];
             let above = &self.u[jp * (n + 1)..][..c + 2];
             let out = &mut self.scratch_u[j * (n + 1)..][..c + 2];
-            // (1/r)·∂(r u)/∂r of the cell left of each face, times h.
-            let mut left = (r[1] * here[1] - r[0] * here[0]) * inverse[0];
+            // (1/r)·∂(r u)/∂r of each cell, times h.
+            for (i, f) in flux.iter_mut().enumerate() {
+                *f = (r[i + 1] * here[i + 1] - r[i] * here[i]) * inverse[i];
+            }
             out[0] = here[0];
             for i in 1..=c {
-                let right = (r[i + 1] * here[i + 1] - r[i] * here[i]) * inverse[i];
                 let axial = below[i] + above[i] - 2.0 * here[i];
-                out[i] = here[i] + a * (right - left + axial);
-                left = right;
+                out[i] = here[i] + a * (flux[i] - flux[i - 1] + axial);
             }
             out[c + 1] = -out[c];
         }
@@ -176,15 +181,21 @@ impl Fluid {
             let here = &self.v[j * n..][..c + 2];
             let above = &self.v[jp * n..][..c + 2];
             let out = &mut self.scratch_v[j * n..][..c + 2];
-            for i in 0..=c {
-                let inner = match i {
-                    0 if rings.no_slip_wall => 2.0 * here[0],
-                    0 => 0.0,
-                    _ => here[i] - here[i - 1],
-                };
+            let update = |i: usize, inner: f32| {
                 let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) * inverse[i];
                 let axial = below[i] + above[i] - 2.0 * here[i];
-                out[i] = here[i] + a * (radial + axial);
+                here[i] + a * (radial + axial)
+            };
+            out[0] = update(
+                0,
+                if rings.no_slip_wall {
+                    2.0 * here[0]
+                } else {
+                    0.0
+                },
+            );
+            for i in 1..=c {
+                out[i] = update(i, here[i] - here[i - 1]);
             }
             out[c + 1] = out[c - 1];
         }
