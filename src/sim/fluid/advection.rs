@@ -3,7 +3,7 @@
 //! step or sampled by a limited bicubic (see [`Advection`]).
 
 use super::sampling::{cell, cubic_sample, cubic_sample4, linear_sample, linear_sample4, trace};
-use super::symmetry::mirror;
+use super::symmetry;
 use super::{Advection, Fluid};
 
 impl Fluid {
@@ -21,6 +21,7 @@ impl Fluid {
     /// Stam's semi-Lagrangian step: each face takes the value found by tracing the flow
     /// back `s = dt/h` cells per unit velocity, sampled by `sample`.
     fn advect_once(&mut self, s: f32, sample: Sample) {
+        let mirror = Mirror::of(self);
         semi_lagrangian(
             [&self.u, &self.v],
             [&self.u, &self.v],
@@ -28,7 +29,7 @@ impl Fluid {
             s,
             [&mut self.scratch_u, &mut self.scratch_v],
             sample,
-            self.mirror,
+            mirror,
         );
         std::mem::swap(&mut self.u, &mut self.scratch_u);
         std::mem::swap(&mut self.v, &mut self.scratch_v);
@@ -49,7 +50,7 @@ impl Fluid {
             s,
             [&mut self.scratch_u, &mut self.scratch_v],
             Sample::Linear(Some([&mut self.bounds_u, &mut self.bounds_v])),
-            self.mirror,
+            Mirror::whole(self.mirror),
         );
         // Back: back = A⁻¹(A(u)), with the same velocity and the step reversed.
         semi_lagrangian(
@@ -59,7 +60,7 @@ impl Fluid {
             -s,
             [&mut self.back_u, &mut self.back_v],
             Sample::Linear(None),
-            self.mirror,
+            Mirror::whole(self.mirror),
         );
         for (out, fwd, orig, bounds) in [
             (&mut self.back_u, &self.scratch_u, &self.u, &self.bounds_u),
@@ -81,9 +82,9 @@ impl Fluid {
 /// they are: the caller zeroes them. A trace that leaves through an open end reads the
 /// boundary face, where the stream enters.
 ///
-/// With `mirror`, the flow is mirror-symmetric about the axis (see [`Fluid::symmetrise`]):
-/// only the faces up to the axis are traced and the rest are their mirror images, which
-/// halves the cost.
+/// With a [`Mirror`], the flow is mirror-symmetric about the axis (see
+/// [`Fluid::symmetrise`]): only the faces up to the axis are traced, which halves the
+/// cost, and the rest are their mirror images.
 fn semi_lagrangian(
     src: [&[f32]; 2],
     vel: [&[f32]; 2],
@@ -91,14 +92,57 @@ fn semi_lagrangian(
     s: f32,
     out: [&mut Vec<f32>; 2],
     sample: Sample,
-    mirror: bool,
+    mirror: Mirror,
 ) {
     // One loop per sampler, so each inner loop is compiled without the others' branches.
-    let traced = if mirror { (n / 2 + 1).min(n) } else { n };
-    match sample {
-        Sample::Linear(None) => sweep::<LINEAR>(src, vel, n, traced, s, out, None),
-        Sample::Linear(bounds) => sweep::<BOUNDED>(src, vel, n, traced, s, out, bounds),
-        Sample::Cubic => sweep::<CUBIC>(src, vel, n, traced, s, out, None),
+    let traced = if mirror == Mirror::No { n } else { (n / 2 + 1).min(n) };
+    let [out_u, out_v] = out;
+    let (mut bounds_u, mut bounds_v) = (None, None);
+    {
+        let out = [&mut *out_u, &mut *out_v];
+        match sample {
+            Sample::Linear(None) => sweep::<LINEAR>(src, vel, n, traced, s, out, None),
+            Sample::Linear(Some([bu, bv])) => {
+                sweep::<BOUNDED>(src, vel, n, traced, s, out, Some([&mut *bu, &mut *bv]));
+                (bounds_u, bounds_v) = (Some(bu), Some(bv));
+            }
+            Sample::Cubic => sweep::<CUBIC>(src, vel, n, traced, s, out, None),
+        }
+    }
+    match mirror {
+        _ if traced == n => {}
+        Mirror::No => {}
+        Mirror::Whole => symmetry::mirror(out_u, out_v, bounds_u, bounds_v, n),
+        Mirror::PastAxis => symmetry::mirror_past_axis(out_u, out_v, n),
+    }
+}
+
+/// Which faces past the axis a mirror-symmetric step fills in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mirror {
+    /// None: the flow is not held symmetric, every face is traced.
+    No,
+    /// All of them: the next steps read the whole field.
+    Whole,
+    /// Only the column just past the axis: an axisymmetric slice's force, viscosity and
+    /// divergence read no further before its projection mirrors the rest (the same bits
+    /// as [`Mirror::Whole`], a pass over half the field fewer).
+    PastAxis,
+}
+
+impl Mirror {
+    /// All faces when `symmetric`, else none.
+    fn whole(symmetric: bool) -> Self {
+        if symmetric { Mirror::Whole } else { Mirror::No }
+    }
+
+    /// What one step of `fluid`'s own advection needs.
+    fn of(fluid: &Fluid) -> Self {
+        match (fluid.mirror, fluid.rings().is_some()) {
+            (false, _) => Mirror::No,
+            (true, false) => Mirror::Whole,
+            (true, true) => Mirror::PastAxis,
+        }
     }
 }
 
@@ -106,7 +150,7 @@ const LINEAR: u8 = 0;
 const BOUNDED: u8 = 1;
 const CUBIC: u8 = 2;
 
-/// Traces the faces of columns below `traced` (all of them: `n`), mirroring the rest.
+/// Traces the faces of columns below `traced` (all of them: `n`).
 fn sweep<const MODE: u8>(
     src: [&[f32]; 2],
     vel: [&[f32]; 2],
@@ -171,9 +215,6 @@ fn sweep<const MODE: u8>(
         let out = &mut out_v[row..][..n];
         let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
         trace_row::<MODE>(src[1], [n, n + 1], 0..traced, (foot, feet), out, bounds);
-    }
-    if traced < n {
-        mirror(out_u, out_v, bounds_u, bounds_v, n);
     }
 }
 

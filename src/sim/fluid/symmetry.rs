@@ -87,3 +87,17 @@ pub(super) fn mirror(
         }
     }
 }
+
+/// The one column of faces just past the axis, as [`mirror`] would fill it: `u` odd, `v`
+/// even about the axis.
+pub(super) fn mirror_past_axis(u: &mut [f32], v: &mut [f32], n: usize) {
+    let c = n / 2;
+    if c + 1 < n && c >= 1 {
+        for row in u.chunks_exact_mut(n + 1) {
+            row[c + 1] = -row[c];
+        }
+        for row in v.chunks_exact_mut(n) {
+            row[c + 1] = row[c - 1];
+        }
+    }
+}
