@@ -35,6 +35,35 @@ pub struct CycleFrame {
     pub centroid: Vec2,
     /// Distance swum along the axis in this step, m.
     pub surge: f32,
+    /// How far the shape reaches (`None`: no points), kept so that the thousands of far
+    /// jellyfish showing this step do not measure it again each frame.
+    pub reach: Option<Reach>,
+}
+
+/// How far a slice's shape reaches from its centroid: its widest point from the axis,
+/// and its lowest and highest along it, m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reach {
+    /// The widest point's distance from the axis.
+    pub radius: f32,
+    /// The lowest point along the axis.
+    pub low: f32,
+    /// The highest point along the axis.
+    pub high: f32,
+}
+
+impl Reach {
+    /// The reach of `points` (relative to the centroid, x across the axis); `None` for
+    /// none.
+    pub fn of<'a>(points: impl IntoIterator<Item = &'a Vec2>) -> Option<Self> {
+        let (mut radius, mut low, mut high) = (0.0f32, f32::MAX, f32::MIN);
+        for p in points {
+            radius = radius.max(p.x.abs());
+            low = low.min(p.y);
+            high = high.max(p.y);
+        }
+        (low <= high).then_some(Self { radius, low, high })
+    }
 }
 
 /// A species' stroke cycle: a frame per fixed step, indexed by the step's place in the
@@ -171,13 +200,17 @@ impl CycleFrame {
         let view = sim.view();
         let centroid = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
         let relative = |points: &[Vec2]| points.iter().map(|p| *p - centroid).collect();
-        Self {
+        let mut frame = Self {
             bell: relative(view.bell),
             tentacles: [relative(view.tentacles[0]), relative(view.tentacles[1])],
             oral_arms: [relative(view.oral_arms[0]), relative(view.oral_arms[1])],
             centroid,
             surge,
-        }
+            reach: None,
+        };
+        let chains = frame.tentacles.iter().chain(&frame.oral_arms).flatten();
+        frame.reach = Reach::of(frame.bell.iter().chain(chains));
+        frame
     }
 }
 

@@ -2,7 +2,7 @@
 //! distance swum, the time and the jellyfish's pose.
 
 use crate::plugin::swimming::Pose;
-use crate::sim::cycle::CycleCache;
+use crate::sim::cycle::{CycleCache, Reach};
 use crate::sim::guides::Trail;
 use crate::sim::{SliceSim, SliceView};
 use bevy::math::{Vec2, Vec3};
@@ -12,36 +12,96 @@ use std::sync::Arc;
 /// never shows.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Snapshot {
-    pub bell: Vec<Vec2>,
-    pub tentacles: [Vec<Vec2>; 2],
-    pub oral_arms: [Vec<Vec2>; 2],
+    /// The shape's own points; not read while it is a `recorded` step, whose points are
+    /// the cycle's (kept for the next shape of its own, so a step allocates nothing).
+    own: Points,
     /// The fringe's guide offsets after the step (`TentacleGuides`), body frame.
     pub trail: Vec<Vec3>,
     /// The oral tubes' guide offsets after the step, body frame.
     pub oral_trail: Vec<Vec3>,
-    pub centroid: Vec2,
     pub swim: f32,
     /// Slice time of the state, s.
     pub time: f64,
     /// The jellyfish's pose in the world after the step.
     pub pose: Pose,
     /// The recorded cycle and the step of it this shape is, exactly (a far jellyfish's,
-    /// not faded into another shape): far jellyfish showing it share its packed shape.
+    /// not faded into another shape): its points are read from the cycle, not copied, and
+    /// far jellyfish showing it share its packed shape.
     pub recorded: Option<(Arc<CycleCache>, u32)>,
 }
 
+/// A slice's points, relative to the bell's centroid, and the centroid in the slice.
+#[derive(Clone, Debug, Default)]
+struct Points {
+    bell: Vec<Vec2>,
+    tentacles: [Vec<Vec2>; 2],
+    oral_arms: [Vec<Vec2>; 2],
+    centroid: Vec2,
+}
+
+/// The points of a shape, wherever they are kept.
+#[derive(Clone, Copy)]
+pub(crate) struct Shape<'a> {
+    pub bell: &'a [Vec2],
+    pub tentacles: [&'a [Vec2]; 2],
+    pub oral_arms: [&'a [Vec2]; 2],
+    pub centroid: Vec2,
+}
+
 impl Snapshot {
+    /// The shape's points: its own, or its recorded step's.
+    pub fn shape(&self) -> Shape<'_> {
+        match &self.recorded {
+            Some((cycle, index)) => {
+                let f = cycle.frame(*index);
+                Shape {
+                    bell: &f.bell,
+                    tentacles: [&f.tentacles[0], &f.tentacles[1]],
+                    oral_arms: [&f.oral_arms[0], &f.oral_arms[1]],
+                    centroid: f.centroid,
+                }
+            }
+            None => {
+                let p = &self.own;
+                Shape {
+                    bell: &p.bell,
+                    tentacles: [&p.tentacles[0], &p.tentacles[1]],
+                    oral_arms: [&p.oral_arms[0], &p.oral_arms[1]],
+                    centroid: p.centroid,
+                }
+            }
+        }
+    }
+
+    /// How far the shape reaches from its centroid: a recorded step's as it was measured
+    /// once, when recorded.
+    pub fn reach(&self) -> Option<Reach> {
+        if let Some((cycle, index)) = &self.recorded {
+            return cycle.frame(*index).reach;
+        }
+        let own = &self.own;
+        let chains = own.tentacles.iter().chain(&own.oral_arms).flatten();
+        Reach::of(own.bell.iter().chain(chains))
+    }
+
+    /// The bell's centroid in the slice, m.
+    pub fn centroid(&self) -> Vec2 {
+        self.shape().centroid
+    }
+
     pub fn capture(&mut self, sim: &SliceSim) {
         let view = sim.view();
         let c = view.bell.iter().sum::<Vec2>() / view.bell.len() as f32;
-        self.centroid = c;
-        self.bell.clear();
-        self.bell.extend(view.bell.iter().map(|p| *p - c));
+        self.recorded = None;
+        let own = &mut self.own;
+        own.centroid = c;
+        own.bell.clear();
+        own.bell.extend(view.bell.iter().map(|p| *p - c));
         let chains = view.tentacles.into_iter().chain(view.oral_arms);
-        for (out, chain) in self
+        for (out, chain) in own
             .tentacles
             .iter_mut()
-            .chain(&mut self.oral_arms)
+            .chain(&mut own.oral_arms)
             .zip(chains)
         {
             out.clear();
@@ -49,7 +109,6 @@ impl Snapshot {
         }
         self.swim = sim.swim_distance();
         self.time = sim.clock().time();
-        self.recorded = None;
     }
 
     /// `self = a + t·(b − a)`, point by point; `b` alone where the shapes differ.
@@ -62,7 +121,8 @@ impl Snapshot {
                 out.extend_from_slice(b);
             }
         };
-        lerp(&mut self.bell, &a.bell, &b.bell);
+        let (sa, sb, own) = (a.shape(), b.shape(), &mut self.own);
+        lerp(&mut own.bell, sa.bell, sb.bell);
         let lerp3 = |out: &mut Vec<Vec3>, a: &[Vec3], b: &[Vec3]| {
             out.clear();
             // (A far jellyfish's trail changes every few steps only.)
@@ -76,17 +136,17 @@ impl Snapshot {
         lerp3(&mut self.oral_trail, &a.oral_trail, &b.oral_trail);
         for side in 0..2 {
             lerp(
-                &mut self.tentacles[side],
-                &a.tentacles[side],
-                &b.tentacles[side],
+                &mut own.tentacles[side],
+                sa.tentacles[side],
+                sb.tentacles[side],
             );
             lerp(
-                &mut self.oral_arms[side],
-                &a.oral_arms[side],
-                &b.oral_arms[side],
+                &mut own.oral_arms[side],
+                sa.oral_arms[side],
+                sb.oral_arms[side],
             );
         }
-        self.centroid = Vec2::ZERO;
+        own.centroid = Vec2::ZERO;
         self.recorded = None;
         self.swim = a.swim + t * (b.swim - a.swim);
         self.time = a.time + t as f64 * (b.time - a.time);
@@ -94,38 +154,27 @@ impl Snapshot {
     }
 
     /// `self = step`, as [`Self::blend`] of `step` with itself would give it, without the
-    /// arithmetic (a far jellyfish shows a recorded step as it is).
+    /// arithmetic (a far jellyfish shows a recorded step as it is: its points stay the
+    /// cycle's).
     pub fn copy_step(&mut self, step: &Snapshot) {
-        self.bell.clone_from(&step.bell);
+        match &step.recorded {
+            Some(recorded) => self.recorded = Some(recorded.clone()),
+            None => {
+                self.recorded = None;
+                self.own.clone_from(&step.own);
+            }
+        }
         self.trail.clone_from(&step.trail);
         self.oral_trail.clone_from(&step.oral_trail);
-        for side in 0..2 {
-            self.tentacles[side].clone_from(&step.tentacles[side]);
-            self.oral_arms[side].clone_from(&step.oral_arms[side]);
-        }
-        self.centroid = Vec2::ZERO;
-        self.recorded = None;
         self.swim = step.swim;
         self.time = step.time;
         self.pose = step.pose;
     }
 
     /// Step `index` of the recorded `cycle`, at slice time `time` and swim distance
-    /// `swim`.
+    /// `swim`: its points are the cycle's, not copied.
     pub fn copy_frame(&mut self, cycle: &Arc<CycleCache>, index: u32, time: f64, swim: f32) {
-        let frame = cycle.frame(index);
         self.recorded = Some((cycle.clone(), index));
-        self.bell.clone_from(&frame.bell);
-        let chains = frame.tentacles.iter().chain(&frame.oral_arms);
-        for (out, chain) in self
-            .tentacles
-            .iter_mut()
-            .chain(&mut self.oral_arms)
-            .zip(chains)
-        {
-            out.clone_from(chain);
-        }
-        self.centroid = frame.centroid;
         self.swim = swim;
         self.time = time;
     }
@@ -138,9 +187,21 @@ impl Snapshot {
         self.oral_trail.extend_from_slice(oral);
     }
 
-    /// `self += weight · other`, point by point, where the shapes match.
+    /// `self += weight · other`, point by point, where the shapes match. A recorded step
+    /// changed becomes a shape of its own.
     pub fn add(&mut self, other: &Snapshot, weight: f32) {
-        if weight != 0.0 {
+        if weight == 0.0 {
+            return;
+        }
+        if self.recorded.is_some() {
+            let shape = self.shape();
+            let own = Points {
+                bell: shape.bell.to_vec(),
+                tentacles: shape.tentacles.map(<[Vec2]>::to_vec),
+                oral_arms: shape.oral_arms.map(<[Vec2]>::to_vec),
+                centroid: shape.centroid,
+            };
+            self.own = own;
             self.recorded = None;
         }
         let add = |a: &mut Vec<Vec2>, b: &[Vec2]| {
@@ -148,19 +209,21 @@ impl Snapshot {
                 a.iter_mut().zip(b).for_each(|(a, b)| *a += weight * *b);
             }
         };
-        add(&mut self.bell, &other.bell);
+        let (own, other) = (&mut self.own, other.shape());
+        add(&mut own.bell, other.bell);
         for side in 0..2 {
-            add(&mut self.tentacles[side], &other.tentacles[side]);
-            add(&mut self.oral_arms[side], &other.oral_arms[side]);
+            add(&mut own.tentacles[side], other.tentacles[side]);
+            add(&mut own.oral_arms[side], other.oral_arms[side]);
         }
     }
 
     pub fn view<'a>(&'a self, rest_bell: &'a [Vec2]) -> SliceView<'a> {
+        let shape = self.shape();
         SliceView {
-            bell: &self.bell,
+            bell: shape.bell,
             rest_bell,
-            tentacles: [&self.tentacles[0], &self.tentacles[1]],
-            oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
+            tentacles: shape.tentacles,
+            oral_arms: shape.oral_arms,
             trail: Trail {
                 offsets: &self.trail,
             },

@@ -7,7 +7,7 @@ use super::choose::{choose, screen_sizes};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::render::JellyfishMeshes;
 use crate::plugin::settings::JellyfishSettings;
-use crate::plugin::slice::{JellyfishSlice, Replay, SliceEdited, Tier, tier_species};
+use crate::plugin::slice::{JellyfishSlice, Replay, SliceEdited, Tier, same, tier_species};
 use crate::plugin::swimming::SwimMotion;
 use crate::plugin::timings::JellyfishTimings;
 use crate::sim::clock::FixedClock;
@@ -38,15 +38,15 @@ pub(super) fn change_tiers(
     timings: Res<JellyfishTimings>,
 ) {
     // Drop cycles of species no jellyfish has any more (after edits).
-    let mut distinct: Vec<&Species> = Vec::new();
+    let mut distinct: Vec<&Arc<Species>> = Vec::new();
     for (_, slice, ..) in &jellyfish {
-        if !distinct.contains(&&slice.species) {
+        if !distinct.iter().any(|s| same(s, &slice.species)) {
             distinct.push(&slice.species);
         }
     }
     let in_use: Vec<Species> = distinct
         .into_iter()
-        .flat_map(|s| [s.clone(), tier_species(s, Tier::Mid)])
+        .flat_map(|s| [Species::clone(s), tier_species(s, Tier::Mid)])
         .collect();
     caches.retain(&in_use);
     // The cycles of live slices just edited, for when they move away: recorded in the
@@ -89,12 +89,12 @@ pub(super) fn change_tiers(
         }
     });
     // What each tier of each species simulates (deciding it validates a species).
-    let mut variants: Vec<(Species, Tier, Species)> = Vec::new();
+    let mut variants: Vec<(Arc<Species>, Tier, Species)> = Vec::new();
     for (e, tier) in &changes {
         if let Ok((_, slice, ..)) = ranked.get(*e)
             && !variants
                 .iter()
-                .any(|(s, t, _)| s == &slice.species && t == tier)
+                .any(|(s, t, _)| same(s, &slice.species) && t == tier)
         {
             let simulated = tier_species(&slice.species, *tier);
             variants.push((slice.species.clone(), *tier, simulated));
@@ -110,7 +110,7 @@ pub(super) fn change_tiers(
             let (_, slice, ..) = ranked.get(*e).ok()?;
             let (.., simulated) = variants
                 .iter()
-                .find(|(s, t, _)| s == &slice.species && t == tier)?;
+                .find(|(s, t, _)| same(s, &slice.species) && t == tier)?;
             Some((*e, (*tier, caches.find(simulated)?)))
         })
         .collect();

@@ -7,6 +7,7 @@
 //! mesh is rebuilt the frame it comes back into view.
 
 use crate::plugin::interpolation::Snapshot;
+use crate::sim::cycle::Reach;
 use crate::species::Species;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::math::Affine3A;
@@ -26,17 +27,9 @@ pub(crate) fn slice_bounds(shape: &Snapshot, species: &Species) -> Aabb {
             species.manubrium_radius * 1.5
                 + species.oral_arm_width * (0.5 + species.oral_arm_frill),
         );
-    let chains = shape.tentacles.iter().chain(&shape.oral_arms);
-    let points = shape.bell.iter().chain(chains.flatten());
-    let (mut radius, mut low, mut high) = (0.0f32, f32::MAX, f32::MIN);
-    for p in points {
-        radius = radius.max(p.x.abs());
-        low = low.min(p.y);
-        high = high.max(p.y);
-    }
-    if low > high {
+    let Some(Reach { radius, low, high }) = shape.reach() else {
         return Aabb::default();
-    }
+    };
     let r = radius + pad;
     Aabb::from_min_max(Vec3::new(-r, low - pad, -r), Vec3::new(r, high + pad, r))
 }

@@ -8,6 +8,7 @@
 //! copy instead of a profile.
 
 use crate::plugin::interpolation::Snapshot;
+use crate::plugin::slice::same;
 use crate::shape::mesh::Resolution;
 use crate::sim::cycle::CycleCache;
 use crate::species::Species;
@@ -26,7 +27,7 @@ struct PackedCycle {
     /// Keeps the cycle's allocation, so no other cycle takes its address (the key) while
     /// this entry lives; gone when no jellyfish plays it.
     cache: Weak<CycleCache>,
-    species: Species,
+    species: Arc<Species>,
     /// `None` where the step could not be packed.
     steps: Vec<OnceLock<Option<Arc<[f32]>>>>,
 }
@@ -38,12 +39,12 @@ impl RecordedFrames {
         &self,
         cache: &Arc<CycleCache>,
         index: u32,
-        species: &Species,
+        species: &Arc<Species>,
         res: Resolution,
         pack: impl FnOnce() -> Option<Vec<f32>>,
     ) -> Option<Arc<[f32]>> {
         let key = (Arc::as_ptr(cache) as usize, res);
-        let current = |c: &Arc<PackedCycle>| c.species == *species;
+        let current = |c: &Arc<PackedCycle>| same(&c.species, species);
         let known = self
             .cycles
             .read()
@@ -81,7 +82,7 @@ impl RecordedFrames {
 }
 
 impl PackedCycle {
-    fn new(cache: &Arc<CycleCache>, species: &Species) -> Arc<Self> {
+    fn new(cache: &Arc<CycleCache>, species: &Arc<Species>) -> Arc<Self> {
         Arc::new(Self {
             cache: Arc::downgrade(cache),
             species: species.clone(),

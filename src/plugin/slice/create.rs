@@ -2,15 +2,17 @@
 
 use super::JellyfishSlice;
 use super::events::{Lifecycle, LifecycleQueue};
+use super::pool::SpeciesPool;
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::species_asset::{Refusals, SpeciesRejected};
 use crate::plugin::swimming::{Pose, SwimMotion};
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
-use bevy::platform::collections::HashSet;
+use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use bevy::utils::Parallel;
+use std::sync::Arc;
 
 /// At most this many slices are built in one frame: a school of hundreds spawned at once
 /// starts over a few frames instead of in one long one. A count, not a time budget, so
@@ -36,6 +38,7 @@ pub(super) fn create_slices(
     mut refusals: ResMut<Refusals>,
     mut rejected: MessageWriter<SpeciesRejected>,
     events: Res<LifecycleQueue>,
+    mut pool: ResMut<SpeciesPool>,
 ) {
     let Refused { queue, failed } = &mut *refused;
     // A refused species is retried only after an edit, so the error is logged once.
@@ -52,12 +55,21 @@ pub(super) fn create_slices(
     waiting.sort_unstable();
     waiting.truncate(NEW_SLICES_PER_FRAME);
     let chosen: HashSet<Entity> = waiting.into_iter().collect();
+    // Each chosen jellyfish's species, interned.
+    let interned: HashMap<AssetId<Species>, Arc<Species>> = chosen
+        .iter()
+        .filter_map(|e| jellyfish.get(*e).ok())
+        .filter_map(|(_, jelly, ..)| {
+            let id = jelly.species.id();
+            Some((id, pool.intern(species.get(id)?)))
+        })
+        .collect();
     jellyfish.par_iter_mut().for_each(
         |(entity, jelly, mut slice, mut history, mut motion, transform)| {
             if !chosen.contains(&entity) {
                 return;
             }
-            let Some(simulated) = species.get(&jelly.species) else {
+            let Some(simulated) = interned.get(&jelly.species.id()) else {
                 return;
             };
             match SliceSim::new(simulated) {

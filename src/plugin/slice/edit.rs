@@ -1,6 +1,7 @@
 //! Species edits reaching living jellyfish: a changed asset, or a new species handle.
 
 use super::JellyfishSlice;
+use super::pool::SpeciesPool;
 use super::tier::tier_species;
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::jellyfish::Jellyfish;
@@ -36,6 +37,7 @@ pub(super) fn apply_edits(
     mut edited: MessageWriter<SliceEdited>,
     mut refusals: ResMut<Refusals>,
     mut rejected: MessageWriter<SpeciesRejected>,
+    mut pool: ResMut<SpeciesPool>,
 ) {
     for (jelly, mut slice, mut history, mut motion) in &mut jellyfish {
         let id = jelly.species.id();
@@ -43,11 +45,11 @@ pub(super) fn apply_edits(
             continue;
         };
         let slice = &mut *slice;
-        if !slice.started() || *simulated == slice.species {
+        if !slice.started() || *simulated == *slice.species {
             continue;
         }
         match apply(slice, &mut history, &mut motion, simulated, &mut edited) {
-            Ok(()) => slice.species = simulated.clone(),
+            Ok(()) => slice.species = pool.intern(simulated),
             Err(error) => {
                 if refusals.say(id, &error, &mut rejected) {
                     error!(
@@ -77,7 +79,7 @@ fn apply(
         sim.set_species(&simulated)?;
         let topology = history
             .newest()
-            .is_none_or(|s| s.bell.len() != sim.view().bell.len());
+            .is_none_or(|s| s.shape().bell.len() != sim.view().bell.len());
         // A new shape or a new step (the stored times are the old clock's).
         if topology || *sim.clock() != clock {
             history.restart(sim, motion.pose);

@@ -5,11 +5,13 @@
 mod create;
 mod edit;
 mod events;
+mod pool;
 mod step;
 mod tier;
 
 pub(crate) use edit::SliceEdited;
 pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
+pub(crate) use pool::{SpeciesPool, same};
 pub use tier::Tier;
 pub(crate) use tier::{Replay, tier_species};
 
@@ -22,6 +24,7 @@ use crate::sim::clock::FixedClock;
 use crate::species::Species;
 use bevy::math::Vec2;
 use bevy::prelude::*;
+use std::sync::Arc;
 
 /// Builds, edits and steps every jellyfish's slice, and triggers its lifecycle events.
 #[derive(Clone, Copy, Debug, Default)]
@@ -37,6 +40,7 @@ impl Plugin for SlicePlugin {
             .register_type::<StrokeStarted>()
             .register_type::<SliceRecovered>()
             .init_resource::<events::LifecycleQueue>()
+            .init_resource::<SpeciesPool>()
             .add_message::<SliceEdited>()
             .add_systems(
                 PreUpdate,
@@ -66,8 +70,10 @@ pub struct JellyfishSlice {
     #[reflect(ignore)]
     pub(crate) replay: Option<Replay>,
     pub(crate) tier: Tier,
-    /// The species as simulated: the last valid one it was given.
-    pub(crate) species: Species,
+    /// The species as simulated: the last valid one it was given (shared by every slice
+    /// of an equal species, see [`SpeciesPool`]).
+    #[reflect(ignore)]
+    pub(crate) species: Arc<Species>,
     pub(crate) seed: u32,
     /// Distance swum and the bell's centroid at the newest recorded step.
     pub(crate) newest: (f32, Vec2),
@@ -172,7 +178,7 @@ impl JellyfishSlice {
         &mut self,
         history: &mut SliceHistory,
         sim: SliceSim,
-        species: Species,
+        species: Arc<Species>,
         seed: u32,
         pose: Pose,
     ) {
@@ -192,6 +198,6 @@ impl JellyfishSlice {
         history.show(self.display_time());
         self.newest = history
             .newest()
-            .map_or((0.0, Vec2::ZERO), |s| (s.swim, s.centroid));
+            .map_or((0.0, Vec2::ZERO), |s| (s.swim, s.centroid()));
     }
 }

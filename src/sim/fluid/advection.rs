@@ -95,7 +95,11 @@ fn semi_lagrangian(
     mirror: Mirror,
 ) {
     // One loop per sampler, so each inner loop is compiled without the others' branches.
-    let traced = if mirror == Mirror::No { n } else { (n / 2 + 1).min(n) };
+    let traced = if mirror == Mirror::No {
+        n
+    } else {
+        (n / 2 + 1).min(n)
+    };
     let [out_u, out_v] = out;
     let (mut bounds_u, mut bounds_v) = (None, None);
     {
