@@ -153,24 +153,6 @@ impl Snapshot {
         self.pose = a.pose.blend(&b.pose, t);
     }
 
-    /// `self = step`, as [`Self::blend`] of `step` with itself would give it, without the
-    /// arithmetic (a far jellyfish shows a recorded step as it is: its points stay the
-    /// cycle's).
-    pub fn copy_step(&mut self, step: &Snapshot) {
-        match &step.recorded {
-            Some(recorded) => self.recorded = Some(recorded.clone()),
-            None => {
-                self.recorded = None;
-                self.own.clone_from(&step.own);
-            }
-        }
-        self.trail.clone_from(&step.trail);
-        self.oral_trail.clone_from(&step.oral_trail);
-        self.swim = step.swim;
-        self.time = step.time;
-        self.pose = step.pose;
-    }
-
     /// Step `index` of the recorded `cycle`, at slice time `time` and swim distance
     /// `swim`: its points are the cycle's, not copied.
     pub fn copy_frame(&mut self, cycle: &Arc<CycleCache>, index: u32, time: f64, swim: f32) {

@@ -6,8 +6,10 @@
 //! template path is tested against.
 
 use super::meshes::JellyfishMeshes;
+use super::recorded::shown_step;
+use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
-use crate::plugin::slice::JellyfishSlice;
+use crate::plugin::slice::{JellyfishSlice, Tier};
 use crate::shape::{JellyMesh, SurfaceBuffers, build_at};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -35,6 +37,7 @@ pub struct JellyfishGeometry<'w, 's> {
         's,
         (
             &'static JellyfishSlice,
+            &'static SliceHistory,
             &'static JellyfishMeshes,
             &'static GlobalTransform,
         ),
@@ -57,15 +60,20 @@ impl JellyfishGeometry<'_, '_> {
     /// [`JellyfishSystems::RebuildMeshes`](crate::plugin::JellyfishSystems)). `None` for an entity
     /// that is not a jellyfish or has not been drawn yet.
     pub fn surfaces(&self, entity: Entity) -> Option<WorldSurfaces> {
-        let (slice, meshes, transform) = self.jellyfish.get(entity).ok()?;
+        let (slice, history, meshes, transform) = self.jellyfish.get(entity).ok()?;
         if !slice.started() {
             return None;
         }
         meshes.bounds?;
-        let view = meshes.blended.view(&slice.rest_bell);
+        // A far jellyfish's frame shows its recorded step as it is (see `rebuild`).
+        let shown = match slice.tier() {
+            Tier::Far => history.shown().map(|(a, b, t)| shown_step(a, b, t))?,
+            _ => &meshes.blended,
+        };
+        let view = shown.view(&slice.rest_bell);
         let mut mesh = JellyMesh::new();
         let res = self.settings.resolution(&slice.species);
-        let time = meshes.blended.time as f32;
+        let time = shown.time as f32;
         build_at(&mut mesh, &view, &slice.species, res, slice.seed, time).ok()?;
         let affine = transform.affine();
         let normal_matrix = affine.matrix3.inverse().transpose();
@@ -87,7 +95,7 @@ impl JellyfishGeometry<'_, '_> {
     /// A sphere around the whole jellyfish, tentacles included, in world space: centre
     /// and radius. Cheap (from the slice's bounds); `None` as for [`Self::surfaces`].
     pub fn bounding_sphere(&self, entity: Entity) -> Option<(Vec3, f32)> {
-        let (_, meshes, transform) = self.jellyfish.get(entity).ok()?;
+        let (_, _, meshes, transform) = self.jellyfish.get(entity).ok()?;
         let bounds = meshes.bounds?;
         let affine = transform.affine();
         let centre = affine.transform_point3a(bounds.center);

@@ -49,6 +49,8 @@ pub struct JellyfishMeshes {
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     pub(crate) slot: Option<u32>,
+    /// The slice the frame shows, blended between the steps around its time (a far
+    /// jellyfish's frame reads its recorded step in place instead, see `rebuild`).
     #[reflect(ignore)]
     pub(crate) blended: Snapshot,
     /// The topology the mesh assets were written with.

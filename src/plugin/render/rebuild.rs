@@ -48,30 +48,35 @@ pub(super) fn build_buffers(
             let Some((a, b, t)) = history.shown() else {
                 return;
             };
-            let far = slice.tier() == Tier::Far;
-            let step = far.then(|| shown_step(a, b, t));
-            match step {
-                Some(step) => meshes.blended.copy_step(step),
-                None => meshes.blended.blend(a, b, t),
-            }
-            let bounds = slice_bounds(&meshes.blended, &slice.species);
+            let JellyfishMeshes {
+                blended,
+                packer,
+                block,
+                shared,
+                buffers,
+                ..
+            } = meshes;
+            // A far jellyfish shows its recorded step as it is: read in place, not copied.
+            let step = (slice.tier() == Tier::Far).then(|| shown_step(a, b, t));
+            let shown = match step {
+                Some(step) => step,
+                None => {
+                    blended.blend(a, b, t);
+                    &*blended
+                }
+            };
+            let bounds = slice_bounds(shown, &slice.species);
             meshes.bounds = Some(bounds);
             meshes.seen = seen(&frusta, &bounds, &transform.affine());
             let templates = meshes.path == Some(SurfacePath::Templates);
             // A template's slot is shaped once even unseen: it must never show another's.
-            if !(meshes.seen || templates && meshes.block.is_empty()) {
+            if !(meshes.seen || templates && block.is_empty()) {
                 timings.add_meshing_of(slice.tier() as usize, start.elapsed());
                 return;
             }
             let res = settings.resolution(&slice.species);
-            let view = meshes.blended.view(&slice.rest_bell);
-            let (seed, time) = (slice.seed, meshes.blended.time as f32);
-            let JellyfishMeshes {
-                packer,
-                block,
-                shared,
-                ..
-            } = meshes;
+            let view = shown.view(&slice.rest_bell);
+            let (seed, time) = (slice.seed, shown.time as f32);
             let step = step.and_then(|s| s.recorded.as_ref());
             let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
                 recorded.step(cache, *index, &slice.species, res, || {
@@ -100,7 +105,7 @@ pub(super) fn build_buffers(
                 }
                 result
             } else {
-                shape::build_at(&mut meshes.buffers, &view, &slice.species, res, seed, time)
+                shape::build_at(buffers, &view, &slice.species, res, seed, time)
                     .map(|()| meshes.dirty = true)
             };
             if let Err(e) = built {
