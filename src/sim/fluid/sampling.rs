@@ -40,8 +40,7 @@ pub(super) fn cubic_sample4(
     let (mut fx, mut fy) = ([0.0; 4], [0.0; 4]);
     // values[row][column][lane]
     let mut values = [[[0.0f32; 4]; 4]; 4];
-    for lane in 0..4 {
-        let (i, j, tx, ty) = locate(nx, ny, x[lane], y[lane]);
+    for (lane, (i, j, tx, ty)) in locate4(nx, ny, x, y).into_iter().enumerate() {
         (fx[lane], fy[lane]) = (tx, ty);
         for (b, row) in sixteen(field, nx, ny, i, j).iter().enumerate() {
             for (a, &v) in row.iter().enumerate() {
@@ -101,6 +100,20 @@ pub(super) fn linear_sample4(
     }
 }
 
+/// [`locate`] at four points at once: the same cells and fractions, lane by lane.
+#[inline]
+fn locate4(nx: usize, ny: usize, x: [f32; 4], y: [f32; 4]) -> [(usize, usize, f32, f32); 4] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: SSE2 is in every x86-64 target's baseline, so it is always enabled.
+        unsafe { sse2::locate4(nx, ny, x, y) }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        std::array::from_fn(|lane| locate(nx, ny, x[lane], y[lane]))
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 mod sse2 {
     use std::arch::x86_64::*;
@@ -140,6 +153,26 @@ mod sse2 {
         let a = _mm_add_ps(a0, _mm_mul_ps(fx, _mm_sub_ps(a1, a0)));
         let b = _mm_add_ps(b0, _mm_mul_ps(fx, _mm_sub_ps(b1, b0)));
         lanes(_mm_add_ps(a, _mm_mul_ps(fy, _mm_sub_ps(b, a))))
+    }
+
+    /// See [`super::locate4`].
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    pub(super) fn locate4(
+        nx: usize,
+        ny: usize,
+        x: [f32; 4],
+        y: [f32; 4],
+    ) -> [(usize, usize, f32, f32); 4] {
+        let (x, y) = (clamp(vector(x), nx), clamp(vector(y), ny));
+        let (i, j) = (corner(x, nx), corner(y, ny));
+        let (fx, fy) = (lanes(_mm_sub_ps(x, i)), lanes(_mm_sub_ps(y, j)));
+        let (i, j) = (lanes(i), lanes(j));
+        std::array::from_fn(|lane| {
+            // Whole numbers from 0 to the last but one: exact conversions.
+            let whole = |v: f32| v as u32 as usize;
+            (whole(i[lane]), whole(j[lane]), fx[lane], fy[lane])
+        })
     }
 
     /// `locate`'s clamp to `[0, top − 1]`: f32::clamp's two comparisons in its order
