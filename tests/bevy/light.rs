@@ -1,11 +1,15 @@
 //! Touch, through the real plugin: a [`Disturbance`] makes the crystal jelly it reaches
 //! flash and escape (it swims further than its untouched twin), leaves one out of reach
-//! alone, is echoed by a neighbour at most half as bright, and replays bit for bit however
-//! time is split into frames; a disturbance that is not finite is refused.
+//! alone, is echoed by a neighbour at most half as bright, is felt as strongly and replays
+//! bit for bit however time is split into frames; a disturbance that is not finite is
+//! refused.
 
 use crate::common::app::Headless;
 use bevy::prelude::*;
-use bevy_jellyfish::plugin::{DetailLevels, Disturbance, ECHO_SHARE, Flash, JellyfishSlice, Tier};
+use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::plugin::{
+    DetailLevels, Disturbance, ECHO_SHARE, Flash, JellyfishSlice, SwimMotion, Tier,
+};
 use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
 use std::time::Duration;
 
@@ -58,6 +62,19 @@ fn centre(app: &App, e: Entity) -> Vec3 {
     app.world().get::<GlobalTransform>(e).unwrap().translation()
 }
 
+/// Where the jellyfish is at its newest step, world (no parent here).
+fn stepped(app: &App, e: Entity) -> Vec3 {
+    app.world().get::<SwimMotion>(e).unwrap().pose.position
+}
+
+/// One frame that takes no time, so it takes no step; frames of `frame` seconds after it.
+fn still_update(app: &mut App, frame: f64) {
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
+    app.update();
+    let frame = Duration::from_secs_f64(frame);
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(frame));
+}
+
 fn touch(app: &mut App, d: Disturbance) {
     app.world_mut().write_message(d);
 }
@@ -78,8 +95,11 @@ fn a_touched_jellyfish_flashes_and_swims_further_than_its_twin() {
     let twin = spawn(&mut app, Vec3::X * 100.0 * diameter());
     run_until(&mut app, 2.0);
     let before = [touched, twin].map(|e| slice(&app, e).swim_distance());
-    let at = centre(&app, touched) + Vec3::X * 0.2 * diameter();
+    // Felt where it is at its newest step, which the next frame's first steps move on:
+    // the touch is sent with the frame that steps nothing new (an update of no time).
+    let at = stepped(&app, touched) + Vec3::X * 0.2 * diameter();
     touch(&mut app, Disturbance::touch(at, 1.0));
+    still_update(&mut app, 1.0 / 60.0);
     run_until(&mut app, 2.2);
     let lit = flash(&app, touched);
     let s = species();
@@ -165,10 +185,9 @@ fn a_scripted_sequence_of_touches_replays_identically() {
         let mut flashes = Vec::new();
         for (at, strength, who) in script {
             run_until(&mut app, at - frame);
-            // A touch as wide as its offset from the centre: felt at full strength, not
-            // at a strength that rounds the offset differently where the jellyfish is.
-            // (A touch is felt against the last frame's pose, so one at a fixed point
-            // would be felt a frame's motion differently at other frame lengths.)
+            // A touch as wide as its offset from the centre: felt at full strength
+            // (`a_touch_at_a_fixed_point_is_felt_alike_at_any_frame_length` checks a
+            // partial one).
             let point = centre(&app, who) + Vec3::Y * 0.2 * diameter();
             let d = Disturbance {
                 radius: 0.25 * diameter(),
@@ -198,6 +217,40 @@ fn a_scripted_sequence_of_touches_replays_identically() {
     assert_eq!(
         flashes[0], flashes[1],
         "refractory: no second flash 0.5 s later"
+    );
+}
+
+/// A touch at a fixed world point is felt exactly as strongly with frames of 1/25 s as of
+/// 1/125 s: where the jellyfish is at its newest step, not where the last frame drew it
+/// (a frame's swimming earlier, which the frame's length decides).
+#[test]
+fn a_touch_at_a_fixed_point_is_felt_alike_at_any_frame_length() {
+    let felt = |frame: f64| {
+        let mut app = app(frame);
+        let e = spawn(&mut app, Vec3::ZERO);
+        run_until(&mut app, 2.0 - frame);
+        // Half its reach ahead of and beside where it started: partly felt.
+        let reach = species().touch_reach * diameter();
+        let point = Vec3::new(0.3, 0.4, 0.0) * reach;
+        touch(&mut app, Disturbance::touch(point, 1.0));
+        app.update();
+        let swum = slice(&app, e).swim_distance();
+        (flash(&app, e).peak, swum)
+    };
+    let (slow, quick) = (felt(1.0 / 25.0), felt(1.0 / 125.0));
+    println!(
+        "felt {} and {} (swum {} and {} m)",
+        slow.0, quick.0, slow.1, quick.1
+    );
+    assert!(
+        slow.0 > 0.0 && slow.0 < species().flash,
+        "partly felt: {slow:?}"
+    );
+    assert_eq!(slow.1.to_bits(), quick.1.to_bits(), "the same steps");
+    assert_eq!(
+        slow.0.to_bits(),
+        quick.0.to_bits(),
+        "{slow:?} against {quick:?}"
     );
 }
 

@@ -4,8 +4,9 @@
 //! at most half as bright.
 //!
 //! Disturbances are felt after the frame's steps ([`JellyfishSystems::StepSlices`]), when
-//! every slice has taken the steps that end at or before the frame's time: an escape then
-//! starts at the same fixed step however the time before was split into frames. A far
+//! every slice has taken the steps that end at or before the frame's time, and where each
+//! jellyfish is at its newest step: an escape then starts at the same fixed step, as
+//! strongly, however the time before was split into frames. A far
 //! jellyfish replays its species' recorded cycle at the escape's quicker rhythm (not the
 //! deeper stroke, which only a live slice has).
 
@@ -16,6 +17,7 @@ pub use flash::{FLASH_RISE, Flash};
 use super::jellyfish::Jellyfish;
 use super::schedule::JellyfishSystems;
 use super::slice::JellyfishSlice;
+use super::swimming::SwimMotion;
 use bevy::prelude::*;
 
 /// Flashes and escapes when the water is disturbed; echoes between neighbours.
@@ -96,13 +98,41 @@ type Touched = (
     Entity,
     &'static mut JellyfishSlice,
     &'static mut Flash,
-    &'static GlobalTransform,
+    Stepped,
 );
+
+/// What says where a jellyfish is at its newest step (see [`stepped_at`]).
+type Stepped = (
+    &'static Transform,
+    &'static SwimMotion,
+    Option<&'static ChildOf>,
+);
+
+/// Where a jellyfish is in the world at its newest step: the pose its last step left
+/// (`SwimMotion::pose`), in its parent's frame if it has one. The drawn
+/// `GlobalTransform` is the previous frame's, between older steps, so a touch at a fixed
+/// point felt against it would weigh more or less with the frame's length; the newest
+/// step is the same however the time was split into frames.
+fn stepped_at(
+    (transform, motion, parent): (&Transform, &SwimMotion, Option<&ChildOf>),
+    parents: &Query<&GlobalTransform>,
+) -> GlobalTransform {
+    let local = Transform {
+        translation: motion.pose.position,
+        rotation: motion.pose.rotation,
+        scale: transform.scale,
+    };
+    match parent.and_then(|p| parents.get(p.parent()).ok()) {
+        Some(parent) => parent.mul_transform(local),
+        None => GlobalTransform::from(local),
+    }
+}
 
 /// Reads the frame's disturbances: who feels each, in entity order.
 fn feel_disturbances(
     mut disturbances: MessageReader<Disturbance>,
     mut jellyfish: Query<Touched>,
+    parents: Query<&GlobalTransform>,
     mut echoes: ResMut<Echoes>,
     time: Res<Time<Virtual>>,
 ) {
@@ -113,10 +143,11 @@ fn feel_disturbances(
             continue;
         }
         let mut felt: Vec<(Entity, f32)> = Vec::new();
-        for (entity, mut slice, mut flash, at) in &mut jellyfish {
+        for (entity, mut slice, mut flash, stepped) in &mut jellyfish {
             let Some(reach) = slice.species().map(|s| s.touch_reach * s.diameter) else {
                 continue;
             };
+            let at = &stepped_at(stepped, &parents);
             let strength = d.felt_at(at.translation(), reach * world_scale(at));
             if strength <= 0.0 {
                 continue;
@@ -129,7 +160,7 @@ fn feel_disturbances(
         }
         felt.sort_by_key(|f| f.0);
         for (source, peak) in felt {
-            owe_echoes(source, peak, &jellyfish, &mut echoes, now);
+            owe_echoes(source, peak, &jellyfish, &parents, &mut echoes, now);
         }
     }
 }
@@ -140,12 +171,14 @@ fn owe_echoes(
     source: Entity,
     peak: f32,
     jellyfish: &Query<Touched>,
+    parents: &Query<&GlobalTransform>,
     echoes: &mut Echoes,
     now: f64,
 ) {
-    let Ok((_, slice, _, at)) = jellyfish.get(source) else {
+    let Ok((_, slice, _, stepped)) = jellyfish.get(source) else {
         return;
     };
+    let at = &stepped_at(stepped, parents);
     let Some(species) = slice.species() else {
         return;
     };
@@ -155,7 +188,7 @@ fn owe_echoes(
     }
     let (from, due) = (at.translation(), now + species.echo_delay as f64);
     for (entity, _, _, other) in jellyfish.iter() {
-        let d = other.translation().distance(from);
+        let d = stepped_at(other, parents).translation().distance(from);
         if entity != source && d < reach {
             let brightness = ECHO_SHARE * peak * (1.0 - d / reach);
             echoes.0.push((due, entity, brightness, from));
@@ -167,7 +200,12 @@ fn owe_echoes(
 pub const ECHO_SHARE: f32 = 0.5;
 
 /// Flashes the echoes that are due (they escape no one, and echo no further).
-fn echo(mut echoes: ResMut<Echoes>, mut jellyfish: Query<Touched>, time: Res<Time<Virtual>>) {
+fn echo(
+    mut echoes: ResMut<Echoes>,
+    mut jellyfish: Query<Touched>,
+    parents: Query<&GlobalTransform>,
+    time: Res<Time<Virtual>>,
+) {
     let now = time.elapsed_secs_f64();
     if echoes.0.is_empty() {
         return;
@@ -177,12 +215,12 @@ fn echo(mut echoes: ResMut<Echoes>, mut jellyfish: Query<Touched>, time: Res<Tim
         .sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let due = echoes.0.partition_point(|e| e.0 <= now);
     for (_, entity, brightness, from) in echoes.0.drain(..due) {
-        if let Ok((_, slice, mut flash, at)) = jellyfish.get_mut(entity)
+        if let Ok((_, slice, mut flash, stepped)) = jellyfish.get_mut(entity)
             && let Some(species) = slice.species()
             && species.flash > 0.0
         {
             let strength = brightness / species.flash;
-            flash.start(species, now, strength, from, at);
+            flash.start(species, now, strength, from, &stepped_at(stepped, &parents));
         }
     }
 }
