@@ -23,6 +23,7 @@ pub(crate) const NEW_SLICES_PER_FRAME: usize = 32;
 /// entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset starts the
 /// clock mid-stroke, which also decides which frames the slice steps on, spreading
 /// the load.
+#[allow(clippy::too_many_arguments)] // a system's parameters
 pub(super) fn create_slices(
     mut jellyfish: Query<(
         Entity,
