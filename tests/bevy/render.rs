@@ -220,9 +220,13 @@ fn templates_draw_what_cpu_meshes_draw() {
         // The species files load in the background, in a frame that depends on the machine's
         // load: hold the clock until every jellyfish has started, so that both renders show
         // the same moment of the same strokes.
+        // Under load (the other tests running beside this one) the files can take many
+        // frames to load; going on with some jellyfish not started would compare two
+        // renders of different moments, so wait for them, up to minutes, and say so.
         let world = offscreen.world_mut();
         world.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
-        for _ in 0..600 {
+        let waited = std::time::Instant::now();
+        loop {
             offscreen.update();
             let world = offscreen.world_mut();
             let mut slices = world.query::<&JellyfishSlice>();
@@ -230,6 +234,11 @@ fn templates_draw_what_cpu_meshes_draw() {
             if started == 3 * PER_SPECIES {
                 break;
             }
+            assert!(
+                waited.elapsed() < Duration::from_secs(300),
+                "{surfaces:?}: {started} of {} jellyfish started after five minutes",
+                3 * PER_SPECIES
+            );
         }
         offscreen
             .world_mut()
