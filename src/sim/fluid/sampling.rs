@@ -128,9 +128,7 @@ mod sse2 {
         x: [f32; 4],
         y: [f32; 4],
     ) -> [f32; 4] {
-        let (x, y) = (clamp(vector(x), nx), clamp(vector(y), ny));
-        let (i, j) = (corner(x, nx), corner(y, ny));
-        let (fx, fy) = (_mm_sub_ps(x, i), _mm_sub_ps(y, j));
+        let [i, j, fx, fy] = located(nx, ny, x, y);
         // Whole numbers below 2²⁴: exact in f32.
         let start = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(j, _mm_set1_ps(nx as f32)), i));
         let start = [
@@ -164,15 +162,22 @@ mod sse2 {
         x: [f32; 4],
         y: [f32; 4],
     ) -> [(usize, usize, f32, f32); 4] {
-        let (x, y) = (clamp(vector(x), nx), clamp(vector(y), ny));
-        let (i, j) = (corner(x, nx), corner(y, ny));
-        let (fx, fy) = (lanes(_mm_sub_ps(x, i)), lanes(_mm_sub_ps(y, j)));
-        let (i, j) = (lanes(i), lanes(j));
+        let [i, j, fx, fy] = located(nx, ny, x, y);
+        let [i, j, fx, fy] = [lanes(i), lanes(j), lanes(fx), lanes(fy)];
         std::array::from_fn(|lane| {
             // Whole numbers from 0 to the last but one: exact conversions.
             let whole = |v: f32| v as u32 as usize;
             (whole(i[lane]), whole(j[lane]), fx[lane], fy[lane])
         })
+    }
+
+    /// `locate` of four points: their cells (as floats) and the fractions past them.
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    fn located(nx: usize, ny: usize, x: [f32; 4], y: [f32; 4]) -> [__m128; 4] {
+        let (x, y) = (clamp(vector(x), nx), clamp(vector(y), ny));
+        let (i, j) = (corner(x, nx), corner(y, ny));
+        [i, j, _mm_sub_ps(x, i), _mm_sub_ps(y, j)]
     }
 
     /// `locate`'s clamp to `[0, top − 1]`: f32::clamp's two comparisons in its order
