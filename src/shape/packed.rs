@@ -38,7 +38,7 @@ pub(crate) mod layout;
 mod shared;
 mod tubes;
 
-pub use shared::{body, joined, pack_instance};
+pub use shared::{instance_len, pack_frame, pack_instance};
 pub use tubes::tentacle_vertex;
 
 use layout::*;
@@ -161,7 +161,7 @@ impl ShapePacker {
         header[H_ARM_WAVES] = style.waves;
         header[H_GUIDES] = bits(trails[0].1);
         header[H_ORAL_GUIDES] = bits(trails[1].1);
-        header[H_BODY] = bits(HEADER);
+        header[H_FRAME] = bits(0);
         header[H_TRAILS] = bits(trail_start(
             res.rings,
             res.tentacles.points,
@@ -253,17 +253,46 @@ fn write_normals(out: &mut [f32], n: [Vec2; 2]) {
     out[..NORMALS].copy_from_slice(&[n[0].x, n[0].y, n[1].x, n[1].y]);
 }
 
-/// A read-only view of one packed block: what the vertex shader sees.
+/// A read-only view of one packed block as the vertex shader sees it: the individual's
+/// own words (`H_SEED` to `H_FRAME`, then its trails) and the frame they draw (the rest of
+/// the header, the rings and the discs). A block as packed is both; a far jellyfish's
+/// instance ([`pack_instance`]) reads its recorded step's frame.
 #[derive(Clone, Copy)]
-pub struct Block<'a>(pub &'a [f32]);
+pub struct Block<'a> {
+    instance: &'a [f32],
+    frame: &'a [f32],
+}
 
-impl Block<'_> {
+impl<'a> Block<'a> {
+    /// A block as [`ShapePacker::pack`] writes it: its own frame.
+    pub fn own(block: &'a [f32]) -> Self {
+        Self {
+            instance: block,
+            frame: block,
+        }
+    }
+
+    /// A far jellyfish's `instance` drawing the recorded `frame` it shows.
+    pub fn far(instance: &'a [f32], frame: &'a [f32]) -> Self {
+        Self { instance, frame }
+    }
+
+    /// A value of the frame.
+    fn value(&self, at: usize) -> f32 {
+        self.frame[at]
+    }
+
+    /// One of the individual's own words.
+    fn individual(&self, at: usize) -> f32 {
+        self.instance[at]
+    }
+
     fn count(&self, at: usize) -> usize {
-        self.0[at].to_bits() as usize
+        self.frame[at].to_bits() as usize
     }
 
     fn disc(&self, at: usize) -> Disc {
-        let d = &self.0[at..at + DISC];
+        let d = &self.frame[at..at + DISC];
         Disc {
             centre: Vec3::new(d[0], d[1], 0.0),
             radius: d[2],
@@ -272,12 +301,13 @@ impl Block<'_> {
     }
 
     fn normals(&self, at: usize) -> [Vec2; 2] {
-        let n = &self.0[at..at + NORMALS];
+        let n = &self.frame[at..at + NORMALS];
         [Vec2::new(n[0], n[1]), Vec2::new(n[2], n[3])]
     }
 
+    /// Where ring `k` starts in the frame: right after the header.
     fn ring(&self, k: usize) -> usize {
-        self.count(H_BODY) + k * RING
+        HEADER + k * RING
     }
 
     fn rings(&self) -> usize {
@@ -288,7 +318,7 @@ impl Block<'_> {
         self.count(H_SEGMENTS)
     }
 
-    /// Where the trails start: after the oral discs, if any.
+    /// Where the trails start in the individual's words.
     fn trail_start(&self) -> usize {
         self.count(H_TRAILS)
     }
@@ -300,7 +330,7 @@ impl Block<'_> {
             return Vec3::ZERO;
         }
         let half = |h: usize| {
-            let value = self.0[start + g * TRAIL + h / 2].to_bits();
+            let value = self.instance[start + g * TRAIL + h / 2].to_bits();
             half::f16::from_bits((value >> (16 * (h % 2))) as u16).to_f32()
         };
         let h = 3 * (m - 1);
@@ -309,17 +339,22 @@ impl Block<'_> {
 
     /// The unstructured noise QP at latitude coordinate `lat`, angle `cs`.
     fn noise(&self, lat: f32, (cos, sin): (f32, f32)) -> f32 {
-        let b = self.0;
+        let b = self.frame;
         let r = b[H_LON_RADIUS];
         perlin4(
-            b[H_SEED].to_bits(),
-            [b[H_LAT_FREQUENCY] * lat, r * cos, r * sin, b[H_TAU]],
+            self.individual(H_SEED).to_bits(),
+            [
+                b[H_LAT_FREQUENCY] * lat,
+                r * cos,
+                r * sin,
+                self.individual(H_TAU),
+            ],
         )
     }
 
     /// Structural lobes at full strength (see [`Variation::structural`]).
     fn lobe(&self, sigma: f32) -> f32 {
-        let b = self.0;
+        let b = self.frame;
         let s = (b[H_STRUCTURAL_FREQUENCY] * sigma).sin();
         let s = if b[H_STRUCTURAL_ABS] > 0.5 {
             s.abs()
@@ -331,7 +366,7 @@ impl Block<'_> {
 
     /// Compression ripple at full strength (see [`Variation::compression`]).
     fn ripple(&self, sigma: f32) -> f32 {
-        let b = self.0;
+        let b = self.frame;
         b[H_COMPRESSION] * 0.5 * (1.0 + (b[H_COMPRESSION_FREQUENCY] * sigma).sin())
     }
 }
@@ -365,7 +400,7 @@ fn ring_tissue(b: Block, k: usize) -> Vec2 {
     };
     Vec2::new(
         tissue::relative_thickness(thickness(k), thickness(0)),
-        tissue::band(b.0[b.ring(k) + RING_CONTRACTION]),
+        tissue::band(b.value(b.ring(k) + RING_CONTRACTION)),
     )
 }
 
@@ -375,7 +410,7 @@ fn umbrella_point(b: Block, surface: usize, k: usize, j: usize) -> (Vec3, Vec3) 
     let at = b.ring(k);
     let (sub, ex) = (b.disc(at + RING_SUBUMBRELLA), b.disc(at + RING_EXUMBRELLA));
     let normals = b.normals(at + RING_NORMALS);
-    let (latitude, contraction) = (b.0[at + RING_LATITUDE], b.0[at + RING_CONTRACTION]);
+    let (latitude, contraction) = (b.value(at + RING_LATITUDE), b.value(at + RING_CONTRACTION));
     let side = if surface == 0 { 1.0 } else { -1.0 };
     if k == 0 {
         let n = sub.normal(normals, (1.0, 0.0));
@@ -385,7 +420,8 @@ fn umbrella_point(b: Block, surface: usize, k: usize, j: usize) -> (Vec3, Vec3) 
     let (cs, sigma) = column(j, b.segments());
     let n = sub.normal(normals, cs);
     let fade = apex_fade(latitude);
-    let shared = b.lobe(sigma) * fade + b.0[H_UNSTRUCTURED] * latitude * b.noise(latitude, cs);
+    let shared =
+        b.lobe(sigma) * fade + b.individual(H_UNSTRUCTURED) * latitude * b.noise(latitude, cs);
     let position = if surface == 0 {
         ex.point(cs) + n * (shared + b.ripple(sigma) * fade * contraction)
     } else {

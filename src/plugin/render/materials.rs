@@ -152,6 +152,7 @@ impl JellyfishLook for SurfaceMaterial {
             extension: SurfaceExtension {
                 offsets: buffers.offsets.clone(),
                 shapes: buffers.shapes.clone(),
+                recorded: buffers.recorded.clone(),
                 tissue: look.tissue,
             },
         })

@@ -42,8 +42,8 @@ pub struct JellyfishMeshes {
     pub(crate) buffers: JellyMesh,
     /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
     pub(crate) block: Vec<f32>,
-    /// A far jellyfish's recorded step, packed once for all that show it: `block` is then
-    /// only its header and trails, and reads its rings and discs from here.
+    /// A far jellyfish's recorded step's frame, packed once for all that show it: `block`
+    /// is then only its own words and trails, and the upload points it at this frame.
     #[reflect(ignore)]
     pub(crate) shared: Option<std::sync::Arc<[f32]>>,
     #[reflect(ignore)]

@@ -80,18 +80,15 @@ pub(super) fn build_buffers(
             let step = step.and_then(|s| s.recorded.as_ref());
             let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
                 recorded.step(cache, *index, &slice.species, res, || {
-                    let mut packed = Vec::new();
-                    packer
-                        .pack(&view, &slice.species, res, seed, time, &mut packed)
+                    let mut frame = Vec::new();
+                    packed::pack_frame(packer, &view, &slice.species, res, &mut frame)
                         .ok()
-                        .map(|()| packed)
+                        .map(|()| frame)
                 })
             });
             let built = if let Some(frame) = recorded_step {
                 block.clear();
-                let (trail, oral) = (view.trail, view.oral_trail);
-                let species = &slice.species;
-                packed::pack_instance(&frame, species, &res, seed, time, trail, oral, block);
+                packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
                 *shared = Some(frame);
                 Ok(())
             } else if templates {

@@ -1,11 +1,11 @@
 //! The far tier's recorded frames, packed once each.
 //!
 //! Every far jellyfish of a species plays the same recorded cycle, and a frame shows one
-//! of its steps (the nearest, not a blend: [`shown_step`]). So the step's shape is packed
-//! the first time a far jellyfish shows it, and every far jellyfish showing that step
-//! shares its rings and discs (`shape::packed::pack_instance`): its own block is a header
-//! and its trails, a few hundred bytes instead of a few kilobytes, and packing it costs a
-//! copy instead of a profile.
+//! of its steps (the nearest, not a blend: [`shown_step`]). So the step's frame is packed
+//! the first time a far jellyfish shows it (`shape::packed::pack_frame`) and uploaded once
+//! (the template upload's recorded buffer), and every far jellyfish showing that step
+//! reads it: its own block is its seed, noise time and trails
+//! (`shape::packed::pack_instance`), a few dozen values instead of a few kilobytes.
 
 use crate::plugin::interpolation::Snapshot;
 use crate::plugin::slice::same;

@@ -75,73 +75,79 @@ macro_rules! layout {
 
 layout! {
     own {
-        /// Header offsets of the packed block: the individual's seed (as `f32` bits).
+        /// Header offsets of the packed block. First the individual's own words, which a
+        /// far jellyfish sends alone (`INSTANCE`): its seed (as `f32` bits).
         H_SEED = 0;
-        /// Rings (opposite pairs) from apex to margin.
-        H_RINGS = 1;
-        /// Segments around the axis.
-        H_SEGMENTS = 2;
-        /// Tentacles around the margin.
-        H_TENTACLES = 3;
-        /// Sides of each tentacle's tube.
-        H_SIDES = 4;
-        /// Points along each tentacle chain.
-        H_POINTS = 5;
-        /// Structural variation's amplitude, m.
-        H_STRUCTURAL = 6;
-        /// Structural lobes around the bell.
-        H_STRUCTURAL_FREQUENCY = 7;
-        /// 1 for `|sin|` lobes, 0 for `sin`.
-        H_STRUCTURAL_ABS = 8;
-        /// Compression ripples' amplitude, m.
-        H_COMPRESSION = 9;
-        /// Compression ripples around the bell.
-        H_COMPRESSION_FREQUENCY = 10;
-        /// Unstructured (noise) amplitude, m.
-        H_UNSTRUCTURED = 11;
-        /// The noise's frequency along the latitude.
-        H_LAT_FREQUENCY = 12;
-        /// The radius of the noise's circle around the bell.
-        H_LON_RADIUS = 13;
         /// The noise's time coordinate `f_t·t`.
-        H_TAU = 14;
+        H_TAU = 1;
+        /// Unstructured (noise) amplitude, m.
+        H_UNSTRUCTURED = 2;
+        /// Where the frame starts: the header's other words, then the rings and discs. As
+        /// packed, 0 (the block is its own frame). In the shape buffer, from the buffer's
+        /// start: the upload writes the block's own start, or for a far jellyfish
+        /// `RECORDED_FRAME` plus where its recorded step starts in the recorded buffer.
+        H_FRAME = 3;
+        /// Values of the individual's own words.
+        INSTANCE = 4;
+        /// Rings (opposite pairs) from apex to margin; from here on the frame's words.
+        H_RINGS = 4;
+        /// Segments around the axis.
+        H_SEGMENTS = 5;
+        /// Tentacles around the margin.
+        H_TENTACLES = 6;
+        /// Sides of each tentacle's tube.
+        H_SIDES = 7;
+        /// Points along each tentacle chain.
+        H_POINTS = 8;
+        /// Structural variation's amplitude, m.
+        H_STRUCTURAL = 9;
+        /// Structural lobes around the bell.
+        H_STRUCTURAL_FREQUENCY = 10;
+        /// 1 for `|sin|` lobes, 0 for `sin`.
+        H_STRUCTURAL_ABS = 11;
+        /// Compression ripples' amplitude, m.
+        H_COMPRESSION = 12;
+        /// Compression ripples around the bell.
+        H_COMPRESSION_FREQUENCY = 13;
+        /// The noise's frequency along the latitude.
+        H_LAT_FREQUENCY = 14;
+        /// The radius of the noise's circle around the bell.
+        H_LON_RADIUS = 15;
         /// Tentacle tube radius, m.
-        H_TENTACLE_RADIUS = 15;
+        H_TENTACLE_RADIUS = 16;
         /// The aperture's disc (`DISC` values).
-        H_APERTURE = 16;
+        H_APERTURE = 17;
         /// The margin's two mesoglea normals (`NORMALS` values).
         H_MARGIN_NORMALS = H_APERTURE + DISC;
         /// Tubes of the manubrium and the oral arms.
         H_ORAL = H_MARGIN_NORMALS + NORMALS;
         /// 1 if oral tube 0 is a manubrium.
-        H_MANUBRIUM = 26;
+        H_MANUBRIUM = 27;
         /// The manubrium's radius, m.
-        H_MANUBRIUM_RADIUS = 27;
+        H_MANUBRIUM_RADIUS = 28;
         /// An oral arm's blade width, m.
-        H_ARM_WIDTH = 28;
+        H_ARM_WIDTH = 29;
         /// The arms' ruffle depth, a fraction of the width.
-        H_ARM_FRILL = 29;
+        H_ARM_FRILL = 30;
         /// Ruffle waves along an arm.
-        H_ARM_WAVES = 30;
+        H_ARM_WAVES = 31;
         /// Rings along each oral tube.
-        H_ORAL_POINTS = 31;
+        H_ORAL_POINTS = 32;
         /// The species' `tentacle_length_spread`.
-        H_TENTACLE_SPREAD = 32;
-        /// Guide chains of the fringe's trail, stored after the oral discs.
-        H_GUIDES = 33;
+        H_TENTACLE_SPREAD = 33;
+        /// Guide chains of the fringe's trail.
+        H_GUIDES = 34;
         /// Guide chains of the oral tubes (one per tube, or none), stored after the
         /// fringe's.
-        H_ORAL_GUIDES = 34;
-        /// Where the rings start (the tentacle and oral discs follow them). In a block as
-        /// packed, from the block's start: `HEADER`. In the shape buffer, from the
-        /// buffer's start: the upload adds the block's start, or points a far
-        /// jellyfish's block at its recorded frame's rings, shared by every far jellyfish
-        /// showing that frame.
-        H_BODY = 35;
-        /// Where the trails start, read as `H_BODY` is.
+        H_ORAL_GUIDES = 35;
+        /// Where the trails start, from the individual's words: after the oral discs in a
+        /// block as packed, right after `INSTANCE` for a far jellyfish's.
         H_TRAILS = 36;
         /// Header length.
         HEADER = 37;
+        /// Set in `H_FRAME` where the frame is in the recorded buffer (a far jellyfish's
+        /// recorded step), not in the shape buffer.
+        RECORDED_FRAME = 1 << 31;
         /// The `MeshTag` of a CPU mesh wearing the template material: the vertex shader
         /// draws its vertices as they are (no slot is this large).
         CPU_MESH_TAG = u32::MAX as usize;
@@ -211,7 +217,7 @@ mod tests {
     use super::*;
 
     /// The header's fields cover it once each, in order: none overlaps another and none
-    /// is left out; and a ring's fields cover the ring.
+    /// is left out, the individual's first; and a ring's fields cover the ring.
     #[test]
     fn the_fields_tile_the_header_and_the_ring() {
         let width = |name: &str| match name {
@@ -225,6 +231,11 @@ mod tests {
             next += width(c.name);
         }
         assert_eq!(next, HEADER);
+        // The individual's words come first; the frame's follow.
+        assert_eq!(
+            [H_SEED, H_TAU, H_UNSTRUCTURED, H_FRAME, INSTANCE],
+            [0, 1, 2, 3, H_RINGS]
+        );
         assert_eq!(
             [
                 RING_SUBUMBRELLA,

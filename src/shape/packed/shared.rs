@@ -1,67 +1,77 @@
-//! Far jellyfish share their recorded frames' rings and discs.
+//! Far jellyfish share their recorded steps' frames.
 //!
-//! A block's rings and discs depend on the slice's shape alone; its header on the
-//! individual (seed, noise time) and its trails on its guides. A far jellyfish shows a
-//! frame of its species' recorded cycle, so every far jellyfish showing that frame can read
-//! the same rings and discs ([`body`]): its own block is the header and its trails
-//! ([`pack_instance`]), and the upload points its `H_BODY` at the frame's body.
+//! A block's frame (most of its header, its rings and discs) depends on the slice's shape
+//! and the species alone; its first words on the individual (seed, noise time) and its
+//! trails on its guides. A far jellyfish shows a step of its species' recorded cycle, so
+//! every far jellyfish showing that step reads the same frame ([`pack_frame`], packed
+//! once), and sends only its own words and trails ([`pack_instance`]): the upload points
+//! its `H_FRAME` at the frame, which the vertex shader reads as
+//! [`Block::far`](super::Block::far) does.
 
 use super::layout::*;
-use super::{Block, carried_trails, write_trails};
+use super::{ShapePacker, write_halves};
+use crate::shape::input::ShapeError;
 use crate::shape::mesh::Resolution;
 use crate::shape::variation::Variation;
-use crate::sim::guides::Trail;
+use crate::sim::SliceView;
+use crate::sim::guides::{GUIDE_NODES, Trail};
 use crate::species::Species;
 
-/// The rings and the tentacle and oral discs of a block as packed: what every far
-/// jellyfish showing the same recorded frame shares.
-pub fn body(block: &[f32]) -> &[f32] {
-    let b = Block(block);
-    &block[b.count(H_BODY)..b.count(H_TRAILS)]
+/// Appends the frame of a recorded step for far jellyfish: the block of `view` without
+/// trails, saying that each instance carries the resolution's fringe guides right after
+/// its own words. On error nothing is appended.
+pub fn pack_frame(
+    packer: &mut ShapePacker,
+    view: &SliceView,
+    species: &Species,
+    res: Resolution,
+    out: &mut Vec<f32>,
+) -> Result<(), ShapeError> {
+    let still = SliceView {
+        trail: Trail::NONE,
+        oral_trail: Trail::NONE,
+        ..*view
+    };
+    let start = out.len();
+    packer.pack(&still, species, res, 0, 0.0, out)?;
+    let header = &mut out[start..];
+    let bits = |v: usize| f32::from_bits(v as u32);
+    header[H_GUIDES] = bits(res.guides);
+    header[H_ORAL_GUIDES] = bits(0);
+    header[H_TRAILS] = bits(INSTANCE);
+    Ok(())
 }
 
-/// Appends the block of a far jellyfish showing the recorded frame that `frame` packs
-/// (`ShapePacker::pack`, any seed and time): the frame's header, with the individual's
-/// `seed` and noise at `time` (s), and its own trails right after it. Its rings and discs
-/// stay in `frame`: `H_BODY` is left for the upload to point at them, and [`joined`] puts
-/// them back on the CPU.
-#[allow(clippy::too_many_arguments)]
+/// Appends a far jellyfish's own words ([`INSTANCE`] values: its `seed`, its noise at
+/// `time` (s), `H_FRAME` left for the upload) and its fringe's trail: the resolution's
+/// guides, zero where its guides are not followed (a far jellyfish does not follow its
+/// oral arms).
 pub fn pack_instance(
-    frame: &[f32],
     species: &Species,
     res: &Resolution,
     seed: u32,
     time: f32,
     trail: Trail,
-    oral_trail: Trail,
     out: &mut Vec<f32>,
 ) {
     let variation = Variation::new(species, seed, time);
-    let trails = carried_trails(trail, oral_trail, res);
-    let bits = |v: usize| f32::from_bits(v as u32);
     let start = out.len();
-    out.extend_from_slice(&frame[..HEADER]);
-    let header = &mut out[start..];
-    header[H_SEED] = f32::from_bits(seed);
-    header[H_TAU] = variation.time_coordinate() as f32;
-    header[H_UNSTRUCTURED] = variation.unstructured_amplitude();
-    header[H_GUIDES] = bits(trails[0].1);
-    header[H_ORAL_GUIDES] = bits(trails[1].1);
-    header[H_BODY] = bits(0);
-    header[H_TRAILS] = bits(HEADER);
-    write_trails(trails, out);
+    out.resize(start + INSTANCE, 0.0);
+    let own = &mut out[start..];
+    own[H_SEED] = f32::from_bits(seed);
+    own[H_TAU] = variation.time_coordinate() as f32;
+    own[H_UNSTRUCTURED] = variation.unstructured_amplitude();
+    own[H_FRAME] = f32::from_bits(0);
+    if trail.guides() == res.guides {
+        for nodes in trail.offsets.chunks_exact(GUIDE_NODES) {
+            write_halves(&nodes[1..], out);
+        }
+    } else {
+        out.resize(out.len() + res.guides * TRAIL, 0.0);
+    }
 }
 
-/// A far jellyfish's `instance` ([`pack_instance`]) with the rings and discs of its
-/// `frame` put back in: the block `ShapePacker::pack` writes for the same slice,
-/// individual and trails.
-pub fn joined(instance: &[f32], frame: &[f32]) -> Vec<f32> {
-    let shared = body(frame);
-    let mut block = Vec::with_capacity(instance.len() + shared.len());
-    block.extend_from_slice(&instance[..HEADER]);
-    block[H_BODY] = f32::from_bits(HEADER as u32);
-    block[H_TRAILS] = f32::from_bits((HEADER + shared.len()) as u32);
-    block.extend_from_slice(shared);
-    block.extend_from_slice(&instance[HEADER..]);
-    block
+/// Values of a far jellyfish's instance at `res`.
+pub fn instance_len(res: &Resolution) -> usize {
+    INSTANCE + res.guides * TRAIL
 }

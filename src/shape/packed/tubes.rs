@@ -21,11 +21,15 @@ fn tentacle_centre(b: Block, t: usize, m: usize) -> Vec3 {
     let sideways = aperture.direction((-sin, cos));
     let fraction = m as f32 / (points - 1) as f32;
     let lat = 1.0 + fraction;
-    let amplitude = b.0[H_UNSTRUCTURED];
+    let amplitude = b.individual(H_UNSTRUCTURED);
     let along = b.lobe(sigma) + amplitude * b.noise(lat, cs);
     let side = amplitude * fraction * b.noise(lat + SIDEWAYS, cs);
     // tentacles::along, between the two discs around the drawn length.
-    let reach = tentacle_reach(b.0[H_SEED].to_bits(), t as u32, b.0[H_TENTACLE_SPREAD]);
+    let reach = tentacle_reach(
+        b.individual(H_SEED).to_bits(),
+        t as u32,
+        b.value(H_TENTACLE_SPREAD),
+    );
     let x = fraction * reach * (points - 1) as f32;
     let i = (x as usize).min(points - 2);
     let first = b.ring(b.rings() + 1);
@@ -125,7 +129,7 @@ pub fn tentacle_vertex(b: Block, index: usize) -> Vertex {
         - tentacle_centre(b, t, m.saturating_sub(1)))
     .normalize_or(Vec3::NEG_Y);
     let thin = tissue::taper(m as f32 / last as f32);
-    let radius = b.0[H_TENTACLE_RADIUS] * thin;
+    let radius = b.value(H_TENTACLE_RADIUS) * thin;
     let solid = |position, normal| Vertex {
         position,
         normal,
@@ -174,12 +178,12 @@ fn oral_vertex(b: Block, index: usize) -> Vertex {
         points: b.count(H_ORAL_POINTS),
     };
     let style = OralStyle {
-        manubrium: b.0[H_MANUBRIUM] > 0.5,
-        manubrium_radius: b.0[H_MANUBRIUM_RADIUS],
+        manubrium: b.value(H_MANUBRIUM) > 0.5,
+        manubrium_radius: b.value(H_MANUBRIUM_RADIUS),
         stalk: 0.0,
-        arm_width: b.0[H_ARM_WIDTH],
-        frill: b.0[H_ARM_FRILL],
-        waves: b.0[H_ARM_WAVES],
+        arm_width: b.value(H_ARM_WIDTH),
+        frill: b.value(H_ARM_FRILL),
+        waves: b.value(H_ARM_WAVES),
     };
     let TubeIndex {
         tube: t,

@@ -12,17 +12,21 @@ use bevy::shader::ShaderRef;
 /// tissue layer, on template meshes and (where the device binds it) CPU meshes.
 pub type SurfaceMaterial = ExtendedMaterial<StandardMaterial, SurfaceExtension>;
 
-/// The shape buffers, bound for the vertex stage (bindings 100 and 101), and the tissue
-/// layer's uniform (binding 102). CPU meshes wear it too (tagged
+/// The shape buffers, bound for the vertex stage (bindings 100, 101 and 103), and the
+/// tissue layer's uniform (binding 102). CPU meshes wear it too (tagged
 /// [`CPU_MESH_TAG`](crate::plugin::render::CPU_MESH_TAG)).
 #[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
 pub struct SurfaceExtension {
     /// `u32` per slot: where its packed shape starts in `shapes`.
     #[storage(100, read_only, visibility(vertex))]
     pub offsets: Handle<ShaderBuffer>,
-    /// Every jellyfish's packed shape, `f32`.
+    /// Every jellyfish's packed shape, `f32`: a near one's block, a far one's own words
+    /// and trails.
     #[storage(101, read_only, visibility(vertex))]
     pub shapes: Handle<ShaderBuffer>,
+    /// The recorded steps far jellyfish show, `f32`: each frame written once.
+    #[storage(103, read_only, visibility(vertex))]
+    pub recorded: Handle<ShaderBuffer>,
     /// How the opacity follows the path, and the band.
     #[uniform(102)]
     pub tissue: Tissue,

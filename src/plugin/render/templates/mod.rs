@@ -51,7 +51,7 @@ pub(crate) fn device_supports_templates(device: &RenderDevice, adapter: &RenderA
         .get_downlevel_capabilities()
         .flags
         .contains(DownlevelFlags::VERTEX_STORAGE)
-        && device.limits().max_storage_buffers_per_shader_stage >= 2
+        && device.limits().max_storage_buffers_per_shader_stage >= 3
 }
 
 #[allow(clippy::too_many_arguments)]

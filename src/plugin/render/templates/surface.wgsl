@@ -25,6 +25,26 @@
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> offsets: array<u32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(101) var<storage, read> shapes: array<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(103) var<storage, read> recorded: array<f32>;
+
+// The vertex's block (packed::Block): where the individual's words start in `shapes`, and
+// whether its frame is in `recorded` (a far jellyfish's recorded step) or in `shapes`.
+// Every function's `base` is where the frame starts in that buffer.
+var<private> individual_at: u32;
+var<private> frame_is_recorded: bool;
+
+// A value of the frame (packed::Block::value).
+fn frame_value(at: u32) -> f32 {
+    if frame_is_recorded {
+        return recorded[at];
+    }
+    return shapes[at];
+}
+
+// One of the individual's own words (packed::Block::individual).
+fn individual(at: u32) -> f32 {
+    return shapes[individual_at + at];
+}
 
 // A template's own attributes are its rest shape, which only CPU meshes (tagged
 // packed::CPU_MESH_TAG) draw; the locations are those of bevy_pbr's forward_io and
@@ -159,9 +179,9 @@ fn perlin4(seed: u32, p: vec4<f32>) -> f32 {
 
 fn read_disc(at: u32) -> Disc {
     return Disc(
-        vec3(shapes[at], shapes[at + 1u], 0.0),
-        shapes[at + 2u],
-        vec2(shapes[at + 3u], shapes[at + 4u]),
+        vec3(frame_value(at), frame_value(at + 1u), 0.0),
+        frame_value(at + 2u),
+        vec2(frame_value(at + 3u), frame_value(at + 4u)),
     );
 }
 
@@ -191,8 +211,8 @@ fn disc_point(d: Disc, cs: vec2<f32>) -> vec3<f32> {
 
 // The left and right slice normals at `at` swept to angle σ = (cos, sin).
 fn disc_normal(d: Disc, at: u32, cs: vec2<f32>) -> vec3<f32> {
-    let left = vec2(shapes[at], shapes[at + 1u]);
-    let right = vec2(shapes[at + 2u], shapes[at + 3u]);
+    let left = vec2(frame_value(at), frame_value(at + 1u));
+    let right = vec2(frame_value(at + 2u), frame_value(at + 3u));
     let a = perp(d.radial);
     let right_radial = dot(right, d.radial);
     let right_axial = dot(right, a);
@@ -207,33 +227,33 @@ fn disc_normal(d: Disc, at: u32, cs: vec2<f32>) -> vec3<f32> {
 // ---- shape::packed ----
 
 fn count(base: u32, at: u32) -> u32 {
-    return bitcast<u32>(shapes[base + at]);
+    return bitcast<u32>(frame_value(base + at));
 }
 
 fn noise(base: u32, lat: f32, cs: vec2<f32>) -> f32 {
-    let r = shapes[base + packed::H_LON_RADIUS];
+    let r = frame_value(base + packed::H_LON_RADIUS);
     return perlin4(
-        count(base, packed::H_SEED),
+        bitcast<u32>(individual(packed::H_SEED)),
         vec4(
-            shapes[base + packed::H_LAT_FREQUENCY] * lat,
+            frame_value(base + packed::H_LAT_FREQUENCY) * lat,
             r * cs.x,
             r * cs.y,
-            shapes[base + packed::H_TAU],
+            individual(packed::H_TAU),
         ),
     );
 }
 
 fn lobe(base: u32, sigma: f32) -> f32 {
-    var s = sin(shapes[base + packed::H_STRUCTURAL_FREQUENCY] * sigma);
-    if shapes[base + packed::H_STRUCTURAL_ABS] > 0.5 {
+    var s = sin(frame_value(base + packed::H_STRUCTURAL_FREQUENCY) * sigma);
+    if frame_value(base + packed::H_STRUCTURAL_ABS) > 0.5 {
         s = abs(s);
     }
-    return shapes[base + packed::H_STRUCTURAL] * s;
+    return frame_value(base + packed::H_STRUCTURAL) * s;
 }
 
 fn ripple(base: u32, sigma: f32) -> f32 {
-    return shapes[base + packed::H_COMPRESSION] * 0.5
-        * (1.0 + sin(shapes[base + packed::H_COMPRESSION_FREQUENCY] * sigma));
+    return frame_value(base + packed::H_COMPRESSION) * 0.5
+        * (1.0 + sin(frame_value(base + packed::H_COMPRESSION_FREQUENCY) * sigma));
 }
 
 fn apex_fade(latitude: f32) -> f32 {
@@ -242,15 +262,15 @@ fn apex_fade(latitude: f32) -> f32 {
 }
 
 fn ring_at(base: u32, k: u32) -> u32 {
-    return count(base, packed::H_BODY) + k * packed::RING;
+    return base + packed::HEADER + k * packed::RING;
 }
 
 fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
     let at = ring_at(base, k);
     let sub = read_disc(at + packed::RING_SUBUMBRELLA);
     let ex = read_disc(at + packed::RING_EXUMBRELLA);
-    let latitude = shapes[at + packed::RING_LATITUDE];
-    let contraction = shapes[at + packed::RING_CONTRACTION];
+    let latitude = frame_value(at + packed::RING_LATITUDE);
+    let contraction = frame_value(at + packed::RING_CONTRACTION);
     var side = 1.0;
     if surface == 1u {
         side = -1.0;
@@ -269,7 +289,7 @@ fn umbrella_point(base: u32, surface: u32, k: u32, j: u32) -> Surface {
     let n = disc_normal(sub, at + packed::RING_NORMALS, cs);
     let fade = apex_fade(latitude);
     let shared_offset = lobe(base, sigma) * fade
-        + shapes[base + packed::H_UNSTRUCTURED] * latitude * noise(base, latitude, cs);
+        + individual(packed::H_UNSTRUCTURED) * latitude * noise(base, latitude, cs);
     var position: vec3<f32>;
     if surface == 0u {
         position = disc_point(ex, cs) + n * (shared_offset + ripple(base, sigma) * fade * contraction);
@@ -307,7 +327,7 @@ fn taper(fraction: f32) -> f32 {
 fn ring_tissue(base: u32, k: u32) -> vec2<f32> {
     return vec2(
         relative_thickness(ring_thickness(base, k), ring_thickness(base, 0u)),
-        band(shapes[ring_at(base, k) + packed::RING_CONTRACTION]),
+        band(frame_value(ring_at(base, k) + packed::RING_CONTRACTION)),
     );
 }
 
@@ -365,7 +385,7 @@ fn tentacle_centre(base: u32, t: u32, m: u32) -> vec3<f32> {
     let sideways = disc_direction(aperture, vec2(-cs.y, cs.x));
     let fraction = f32(m) / f32(points - 1u);
     let lat = 1.0 + fraction;
-    let amplitude = shapes[base + packed::H_UNSTRUCTURED];
+    let amplitude = individual(packed::H_UNSTRUCTURED);
     let along = lobe(base, sigma) + amplitude * noise(base, lat, cs);
     let side = amplitude * fraction * noise(base, lat + packed::SIDEWAYS, cs);
     // tentacles::along, between the two discs around the drawn length.
@@ -406,9 +426,9 @@ fn half_to_f32(bits: u32) -> f32 {
     return bitcast<f32>(((bits & 0x8000u) << 16u) | ((exponent + 112u) << 23u) | (mantissa << 13u));
 }
 
-// packed::Block::trail_start.
+// packed::Block::trail_start, in the shape buffer.
 fn trail_start(base: u32) -> u32 {
-    return count(base, packed::H_TRAILS);
+    return individual_at + count(base, packed::H_TRAILS);
 }
 
 // sim::guides::along: guide g's offset `fraction` of the way down, linear between nodes.
@@ -446,9 +466,9 @@ fn oral_trail_offset(base: u32, t: u32, fraction: f32) -> vec3<f32> {
 
 // variation::tentacle_reach.
 fn tentacle_reach(base: u32, t: u32) -> f32 {
-    let seed = bitcast<u32>(shapes[base + packed::H_SEED]);
+    let seed = bitcast<u32>(individual(packed::H_SEED));
     let u = f32(pcg(seed ^ pcg(t)) >> 8u) / 16777216.0;
-    return clamp(1.0 - shapes[base + packed::H_TENTACLE_SPREAD] * u, 0.0, 1.0);
+    return clamp(1.0 - frame_value(base + packed::H_TENTACLE_SPREAD) * u, 0.0, 1.0);
 }
 
 // tentacles::across and tentacles::perpendicular.
@@ -496,7 +516,7 @@ fn tube_index(index: u32, sides: u32, points: u32) -> TubeIndex {
 // ---- shape::oral (the manubrium and the oral arms, after the tentacles) ----
 
 fn has_manubrium(base: u32) -> bool {
-    return shapes[base + packed::H_MANUBRIUM] > 0.5;
+    return frame_value(base + packed::H_MANUBRIUM) > 0.5;
 }
 
 fn is_manubrium(base: u32, t: u32) -> bool {
@@ -516,9 +536,9 @@ fn arm_angle(base: u32, t: u32) -> vec2<f32> {
 
 // OralStyle::thickness.
 fn oral_thickness(base: u32, manubrium: bool, f: f32) -> f32 {
-    var reference = 0.15 * shapes[base + packed::H_ARM_WIDTH];
+    var reference = 0.15 * frame_value(base + packed::H_ARM_WIDTH);
     if manubrium {
-        reference = shapes[base + packed::H_MANUBRIUM_RADIUS];
+        reference = frame_value(base + packed::H_MANUBRIUM_RADIUS);
     }
     return relative_thickness(oral_section(base, manubrium, f).y, reference);
 }
@@ -526,12 +546,12 @@ fn oral_thickness(base: u32, manubrium: bool, f: f32) -> f32 {
 // OralStyle::section: (half-width, half-thickness).
 fn oral_section(base: u32, manubrium: bool, f: f32) -> vec2<f32> {
     if manubrium {
-        let r = shapes[base + packed::H_MANUBRIUM_RADIUS] * (1.0 + 0.5 * f * f);
+        let r = frame_value(base + packed::H_MANUBRIUM_RADIUS) * (1.0 + 0.5 * f * f);
         return vec2(r, r);
     }
     let x = clamp(f / 0.25, 0.0, 1.0);
     let grow = x * x * (3.0 - 2.0 * x);
-    let half = 0.5 * shapes[base + packed::H_ARM_WIDTH] * (0.4 + 0.6 * grow) * (1.0 - 0.6 * f * f);
+    let half = 0.5 * frame_value(base + packed::H_ARM_WIDTH) * (0.4 + 0.6 * grow) * (1.0 - 0.6 * f * f);
     return vec2(half, 0.3 * half);
 }
 
@@ -596,8 +616,8 @@ fn oral_vertex(base: u32, index: u32) -> Surface {
     let section = oral_section(base, manubrium, f);
     var ruffle = 0.0;
     if !manubrium {
-        let waves = 2.0 * sin(packed::TAU * shapes[base + packed::H_ARM_WAVES] * f + 1.7 * arm.x);
-        ruffle = shapes[base + packed::H_ARM_FRILL] * section.x * e * e
+        let waves = 2.0 * sin(packed::TAU * frame_value(base + packed::H_ARM_WAVES) * f + 1.7 * arm.x);
+        ruffle = frame_value(base + packed::H_ARM_FRILL) * section.x * e * e
             * (packed::ARM_CURL + waves);
     }
     let position = c + section.x * e * n + (section.y * o + ruffle) * b;
@@ -624,7 +644,7 @@ fn tentacle_vertex(base: u32, index: u32) -> Surface {
         vec3(0.0, -1.0, 0.0),
     );
     let thin = taper(f32(m) / f32(last));
-    let radius = shapes[base + packed::H_TENTACLE_RADIUS] * thin;
+    let radius = frame_value(base + packed::H_TENTACLE_RADIUS) * thin;
     let tissue = vec2(thin, 0.0);
     if at.cap < 0 {
         return Surface(centre - radius * tangent, -tangent, tissue);
@@ -648,7 +668,10 @@ fn vertex(vertex: Vertex) -> VertexOutput {
     if tag == packed::CPU_MESH_TAG {
         surface = cpu_vertex(vertex);
     } else {
-        let base = offsets[tag >> 1u];
+        individual_at = offsets[tag >> 1u];
+        let frame = bitcast<u32>(shapes[individual_at + packed::H_FRAME]);
+        frame_is_recorded = (frame & packed::RECORDED_FRAME) != 0u;
+        let base = frame & ~packed::RECORDED_FRAME;
         let local = vertex.index - mesh[vertex.instance_index].first_vertex_index;
         if (tag & 1u) == 0u {
             surface = umbrella_vertex(base, local);

@@ -1,25 +1,26 @@
-//! The shape buffers: every templated jellyfish's packed shape, uploaded once a frame.
+//! The shape buffers: every templated jellyfish's packed shape.
 //!
-//! Two storage buffers: `offsets[slot]` is where slot's block starts in `shapes`. A
+//! Three storage buffers. `offsets[slot]` is where slot's words start in `shapes`. A
 //! jellyfish keeps its slot for life (its `MeshTag`), so jellyfish coming and going never
-//! re-tag the others. Far jellyfish showing the same recorded step share its rings and
-//! discs, written once; each block's `H_BODY` and `H_TRAILS` say where its rings and trails
-//! start in `shapes`. The buffers grow by a quarter when they must, shrink when less than
-//! half used (far jellyfish need far less than near ones), and otherwise keep their size
-//! between frames so Bevy writes them in place; a new size rebinds the materials.
+//! re-tag the others. `shapes`, written every frame, holds a near jellyfish's whole block
+//! and a far one's own words and trails (`shape::packed::pack_instance`, a few dozen
+//! values). `recorded` holds the frames of the recorded steps far jellyfish show, each
+//! written once and uploaded only when a step is new (a species' first cycle, or after an
+//! edit records it again); each block's `H_FRAME` says where its frame starts, and in
+//! which buffer. The buffers grow by a quarter when they must, shrink when less than half
+//! used, and otherwise keep their size between frames so Bevy writes them in place; a new
+//! size rebinds the materials.
 
 use super::material::SurfaceMaterial;
 use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
 use crate::plugin::timings::JellyfishTimings;
-use crate::shape::packed::{
-    self,
-    layout::{H_BODY, H_TRAILS, HEADER},
-};
+use crate::shape::packed::layout::{H_FRAME, RECORDED_FRAME};
 use bevy::asset::RenderAssetUsages;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::render::render_resource::BufferUsages;
 use bevy::render::storage::ShaderBuffer;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The storage buffers the template materials read.
@@ -30,16 +31,19 @@ pub struct ShapeBuffers {
     pub offsets: Handle<ShaderBuffer>,
     /// The packed shapes, `f32`.
     pub shapes: Handle<ShaderBuffer>,
+    /// The recorded steps' frames, `f32`.
+    pub recorded: Handle<ShaderBuffer>,
     /// Sizes the buffers have now, in elements.
-    capacity: (usize, usize),
+    capacity: [usize; 3],
 }
 
 impl ShapeBuffers {
     pub(super) fn new(assets: &mut Assets<ShaderBuffer>) -> Self {
-        let capacity = (8, 512);
+        let capacity = [8, 512, 512];
         Self {
-            offsets: assets.add(buffer(vec![0; capacity.0 * 4])),
-            shapes: assets.add(buffer(vec![0; capacity.1 * 4])),
+            offsets: assets.add(buffer(vec![0; capacity[0] * 4])),
+            shapes: assets.add(buffer(vec![0; capacity[1] * 4])),
+            recorded: assets.add(buffer(vec![0; capacity[2] * 4])),
             capacity,
         }
     }
@@ -81,7 +85,47 @@ impl SurfaceSlots {
     }
 }
 
-/// Gathers the blocks into the two buffers and hands them to the renderer.
+/// The recorded buffer's contents: each recorded frame a far jellyfish showed, once.
+#[derive(Default)]
+pub(crate) struct RecordedLayout {
+    /// Each frame by address, held so that no other frame takes its address, and where
+    /// it starts in `words`.
+    start: HashMap<usize, (Arc<[f32]>, u32)>,
+    words: Vec<f32>,
+    /// Whether `words` changed since it was last uploaded.
+    changed: bool,
+}
+
+impl RecordedLayout {
+    /// Where `frame` starts, written the first time.
+    fn start(&mut self, frame: &Arc<[f32]>) -> u32 {
+        let key = frame.as_ptr() as usize;
+        if let Some((_, at)) = self.start.get(&key) {
+            return *at;
+        }
+        let at = self.words.len() as u32;
+        self.words.extend_from_slice(frame);
+        self.start.insert(key, (frame.clone(), at));
+        self.changed = true;
+        at
+    }
+
+    /// Starts again, empty, when more than half of it is frames of cycles no jellyfish
+    /// plays any more (held here alone: a species edited and recorded again, or gone).
+    fn compact(&mut self) {
+        let dead: usize = self
+            .start
+            .values()
+            .filter(|(frame, _)| Arc::strong_count(frame) == 1)
+            .map(|(frame, _)| frame.len())
+            .sum();
+        if 2 * dead > self.words.len() {
+            *self = Self::default();
+        }
+    }
+}
+
+/// Gathers the blocks into the buffers and hands them to the renderer.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn upload(
     jellyfish: Query<&JellyfishMeshes>,
@@ -91,7 +135,7 @@ pub(crate) fn upload(
     materials: Option<ResMut<Assets<SurfaceMaterial>>>,
     timings: Res<JellyfishTimings>,
     mut offsets: Local<Vec<u32>>,
-    mut bodies: Local<HashMap<usize, u32>>,
+    mut recorded: Local<RecordedLayout>,
 ) {
     let (Some(mut buffers), Some(mut assets)) = (buffers, assets) else {
         return;
@@ -100,62 +144,63 @@ pub(crate) fn upload(
     offsets.clear();
     offsets.resize(slots.len as usize, 0);
     // Gathered straight into the bytes handed to the renderer (each frame's go to the
-    // render world): one copy of a few megabytes a frame, not two.
-    let mut shapes: Vec<u8> = Vec::with_capacity(4 * buffers.capacity.1);
-    bodies.clear();
+    // render world): one copy a frame, not two.
+    let mut shapes: Vec<u8> = Vec::with_capacity(4 * buffers.capacity[1]);
+    recorded.compact();
     for meshes in &jellyfish {
         if meshes.path == Some(SurfacePath::Templates)
             && let Some(slot) = meshes.slot
             && !meshes.block.is_empty()
         {
-            // A far jellyfish's recorded step: its rings and discs once for all.
-            let body = meshes.shared.as_ref().map(|frame| {
-                *bodies.entry(frame.as_ptr() as usize).or_insert_with(|| {
-                    let at = (shapes.len() / 4) as u32;
-                    extend_words(&mut shapes, packed::body(frame));
-                    at
-                })
-            });
             let start = (shapes.len() / 4) as u32;
             offsets[slot as usize] = start;
             extend_words(&mut shapes, &meshes.block);
-            // Where its rings and trails start, from the buffer's start.
-            let word = |at: usize| meshes.block[at].to_bits();
-            let (rings, trails) = match body {
-                Some(body) => (body, start + HEADER as u32),
-                None => (start + word(H_BODY), start + word(H_TRAILS)),
+            // A far jellyfish's frame is its recorded step's, in the recorded buffer.
+            let frame = match &meshes.shared {
+                Some(frame) => RECORDED_FRAME as u32 | recorded.start(frame),
+                None => start,
             };
-            set_word(&mut shapes, start as usize + H_BODY, rings);
-            set_word(&mut shapes, start as usize + H_TRAILS, trails);
+            set_word(&mut shapes, start as usize + H_FRAME, frame);
         }
     }
     if shapes.is_empty() {
         return;
     }
-    // Room for a quarter more than needed; kept while it is at least half used.
+    // Room for a quarter more than needed; kept while it is at least half used. Never
+    // empty: a buffer bound is at least a value long.
     let grow = |needed: usize, now: usize| {
+        let needed = needed.max(64);
         if needed > now || 2 * needed < now {
             needed + needed / 4
         } else {
             now
         }
     };
-    let capacity = (
-        grow(offsets.len(), buffers.capacity.0),
-        grow(shapes.len() / 4, buffers.capacity.1),
-    );
-    let grown = capacity != buffers.capacity;
+    let needed = [offsets.len(), shapes.len() / 4, recorded.words.len()];
+    let capacity = [0, 1, 2].map(|i| grow(needed[i], buffers.capacity[i]));
+    let grown = [0, 1, 2].map(|i| capacity[i] != buffers.capacity[i]);
     buffers.capacity = capacity;
-    offsets.resize(capacity.0, 0);
-    shapes.resize(4 * capacity.1, 0);
+    offsets.resize(capacity[0], 0);
+    shapes.resize(4 * capacity[1], 0);
     let mut offset_bytes = Vec::with_capacity(4 * offsets.len());
     extend_words(
         &mut offset_bytes,
         bytemuck::cast_slice::<u32, f32>(&offsets),
     );
-    let written = [(&buffers.offsets, offset_bytes), (&buffers.shapes, shapes)];
+    let mut written = vec![
+        (&buffers.offsets, offset_bytes, grown[0]),
+        (&buffers.shapes, shapes, grown[1]),
+    ];
+    // The recorded frames only when one is new (or the buffer moved).
+    if recorded.changed || grown[2] {
+        recorded.changed = false;
+        let mut bytes = Vec::with_capacity(4 * capacity[2]);
+        extend_words(&mut bytes, &recorded.words);
+        bytes.resize(4 * capacity[2], 0);
+        written.push((&buffers.recorded, bytes, grown[2]));
+    }
     let mut total = 0;
-    for (handle, data) in written {
+    for (handle, data, grown) in written {
         total += data.len();
         if let Some(mut buffer) = assets.get_mut(handle) {
             if grown {
@@ -164,11 +209,16 @@ pub(crate) fn upload(
             buffer.data = Some(data);
         }
     }
-    // A resized buffer is a new GPU buffer: rebuild the materials' bind groups.
-    if grown && let Some(mut materials) = materials {
+    // A resized buffer is a new GPU buffer: rebuild the materials' bind groups. Only a
+    // mutable borrow marks an asset modified (`get_mut` alone does not).
+    if grown.contains(&true)
+        && let Some(mut materials) = materials
+    {
         let ids: Vec<_> = materials.ids().collect();
         for id in ids {
-            materials.get_mut(id);
+            if let Some(material) = materials.get_mut(id) {
+                material.into_inner();
+            }
         }
     }
     timings.add_mesh_bytes(total);
