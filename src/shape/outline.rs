@@ -85,12 +85,8 @@ impl SliceOutline {
             rest_bell: &self.rest_bell,
             tentacles: [&self.tentacles[0], &self.tentacles[1]],
             oral_arms: [&self.oral_arms[0], &self.oral_arms[1]],
-            trail: Trail {
-                offsets: &self.trail,
-            },
-            oral_trail: Trail {
-                offsets: &self.oral_trail,
-            },
+            trail: Trail::new(&self.trail),
+            oral_trail: Trail::new(&self.oral_trail),
         }
     }
 }

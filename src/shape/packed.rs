@@ -38,7 +38,7 @@ pub(crate) mod layout;
 mod shared;
 mod tubes;
 
-pub use shared::{instance_len, pack_frame, pack_instance};
+pub use shared::{FAR_GUIDES, far_guides, instance_len, pack_frame, pack_instance};
 pub use tubes::tentacle_vertex;
 
 use layout::*;
@@ -57,11 +57,11 @@ fn trailing_block_len(res: &Resolution, guides: usize, oral_guides: usize) -> us
 }
 
 /// The guides of `trail` the block carries: the resolution's `guides` where the view
-/// follows them and one of them is off where the slice draws it, else none (a far
+/// follows them (not thinned) and one of them is off where the slice draws it, else none (a far
 /// jellyfish does not follow its oral arms; in still water nothing trails), which the
 /// shader reads as zero offsets.
 fn trailing(trail: Trail, guides: usize) -> usize {
-    let followed = trail.guides() == guides;
+    let followed = trail.guides() == guides && trail.nodes == GUIDE_NODES;
     match followed && trail.offsets.iter().any(|d| *d != Vec3::ZERO) {
         true => guides,
         false => 0,
@@ -167,6 +167,7 @@ impl ShapePacker {
             res.tentacles.points,
             oral_discs(&res),
         ));
+        header[H_TRAIL_NODES] = bits(GUIDE_NODES);
         write_disc(&mut header[H_APERTURE..], &aperture);
         write_normals(&mut header[H_MARGIN_NORMALS..], margin.normal);
         let mut radial = Vec2::X;
@@ -224,25 +225,26 @@ fn carried_trails<'a>(
 /// Appends the carried guides of each trail, as halves, two to a value.
 fn write_trails(trails: [(Trail, usize); 2], out: &mut Vec<f32>) {
     for (trail, guides) in trails {
-        for nodes in trail.offsets.chunks_exact(GUIDE_NODES).take(guides) {
+        for nodes in trail.offsets.chunks_exact(trail.nodes).take(guides) {
             write_halves(&nodes[1..], out);
         }
     }
 }
 
-/// Appends one guide's node offsets (its root's left out) as [`TRAIL`] values of two
+/// Appends one guide's node offsets (its root's left out) as `trail_values` values of two
 /// halves each.
 fn write_halves(nodes: &[Vec3], out: &mut Vec<f32>) {
     use half::slice::HalfFloatSliceExt;
+    let len = 3 * nodes.len();
     let mut values = [0.0f32; 2 * TRAIL];
     for (value, d) in values.chunks_exact_mut(3).zip(nodes) {
         value.copy_from_slice(&d.to_array());
     }
     let mut halves = [half::f16::ZERO; 2 * TRAIL];
-    halves.convert_from_f32_slice(&values);
+    halves[..len].convert_from_f32_slice(&values[..len]);
     let pair =
         |h: &[half::f16]| f32::from_bits(h[0].to_bits() as u32 | (h[1].to_bits() as u32) << 16);
-    out.extend(halves.chunks_exact(2).map(pair));
+    out.extend(halves[..len].chunks_exact(2).map(pair));
 }
 
 fn write_disc(out: &mut [f32], d: &Disc) {
@@ -318,6 +320,11 @@ impl<'a> Block<'a> {
         self.count(H_SEGMENTS)
     }
 
+    /// Nodes of each guide of the trails, the root included.
+    fn trail_nodes(&self) -> usize {
+        self.count(H_TRAIL_NODES)
+    }
+
     /// Where the trails start in the individual's words.
     fn trail_start(&self) -> usize {
         self.count(H_TRAILS)
@@ -329,8 +336,9 @@ impl<'a> Block<'a> {
         if m == 0 {
             return Vec3::ZERO;
         }
+        let stride = trail_values(self.trail_nodes());
         let half = |h: usize| {
-            let value = self.instance[start + g * TRAIL + h / 2].to_bits();
+            let value = self.instance[start + g * stride + h / 2].to_bits();
             half::f16::from_bits((value >> (16 * (h % 2))) as u16).to_f32()
         };
         let h = 3 * (m - 1);

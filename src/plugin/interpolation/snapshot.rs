@@ -206,12 +206,8 @@ impl Snapshot {
             rest_bell,
             tentacles: shape.tentacles,
             oral_arms: shape.oral_arms,
-            trail: Trail {
-                offsets: &self.trail,
-            },
-            oral_trail: Trail {
-                offsets: &self.oral_trail,
-            },
+            trail: Trail::new(&self.trail),
+            oral_trail: Trail::new(&self.oral_trail),
         }
     }
 }

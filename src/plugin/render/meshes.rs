@@ -48,6 +48,9 @@ pub struct JellyfishMeshes {
     pub(crate) shared: Option<std::sync::Arc<[f32]>>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
+    /// A far jellyfish's thinned trail (`Trail::thin_into`), as both paths draw it.
+    #[reflect(ignore)]
+    pub(crate) thin: Vec<Vec3>,
     pub(crate) slot: Option<u32>,
     /// The slice the frame shows, blended between the steps around its time (a far
     /// jellyfish's frame reads its recorded step in place instead, see `rebuild`).

@@ -6,7 +6,7 @@ use super::culling::{active_frusta, seen, slice_bounds};
 use super::meshes::{
     CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
 };
-use super::recorded::{RecordedFrames, shown_step};
+use super::recorded::{RecordedFrames, drawn_view, shown_step};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
@@ -54,6 +54,7 @@ pub(super) fn build_buffers(
                 block,
                 shared,
                 buffers,
+                thin,
                 ..
             } = meshes;
             // A far jellyfish shows its recorded step as it is: read in place, not copied.
@@ -75,7 +76,7 @@ pub(super) fn build_buffers(
                 return;
             }
             let res = settings.resolution(&slice.species);
-            let view = shown.view(&slice.rest_bell);
+            let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, thin);
             let (seed, time) = (slice.seed, shown.time as f32);
             let step = step.and_then(|s| s.recorded.as_ref());
             let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {

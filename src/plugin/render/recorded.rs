@@ -10,6 +10,8 @@
 use crate::plugin::interpolation::Snapshot;
 use crate::plugin::slice::same;
 use crate::shape::mesh::Resolution;
+use crate::shape::packed;
+use crate::sim::SliceView;
 use crate::sim::cycle::CycleCache;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
@@ -98,4 +100,21 @@ impl PackedCycle {
 /// shows the step's shape at most half a step early or late.
 pub(crate) fn shown_step<'a>(a: &'a Snapshot, b: &'a Snapshot, t: f32) -> &'a Snapshot {
     if t < 0.5 { a } else { b }
+}
+
+/// What a jellyfish's frame is drawn from, on either path and for picking alike:
+/// `shown`'s view, its fringe's trail thinned (`Trail::thin_into`, into `thin`) where a far
+/// jellyfish shows a recorded step.
+pub(crate) fn drawn_view<'a>(
+    shown: &'a Snapshot,
+    far: bool,
+    rest_bell: &'a [Vec2],
+    res: &Resolution,
+    thin: &'a mut Vec<Vec3>,
+) -> SliceView<'a> {
+    let mut view = shown.view(rest_bell);
+    if far && shown.recorded.is_some() {
+        view.trail = view.trail.thin_into(packed::far_guides(res), thin);
+    }
+    view
 }

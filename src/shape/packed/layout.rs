@@ -13,10 +13,17 @@ use crate::shape::oral::ARM_CURL;
 use crate::shape::tentacles::SIDEWAYS;
 use crate::shape::tissue::TENTACLE_TIP;
 use crate::shape::variation::APEX_FADE;
-use crate::sim::guides::GUIDE_NODES;
+use crate::sim::guides::{GUIDE_NODES, THIN_NODES};
 
-// A guide's halves fill whole values.
+// A guide's halves fill whole values, thinned or not.
 const _: () = assert!((3 * (GUIDE_NODES - 1)).is_multiple_of(2));
+const _: () = assert!((3 * (THIN_NODES - 1)).is_multiple_of(2));
+
+/// Values per guide of a trail of `nodes` nodes, the root (not stored) included: three
+/// halves a node, two to a value. The shader's `trail_values`.
+pub(crate) const fn trail_values(nodes: usize) -> usize {
+    3 * (nodes - 1) / 2
+}
 use crate::species::limits::ORAL_SIDES;
 use std::f32::consts::TAU;
 
@@ -143,18 +150,21 @@ layout! {
         /// Where the trails start, from the individual's words: after the oral discs in a
         /// block as packed, right after `INSTANCE` for a far jellyfish's.
         H_TRAILS = 36;
+        /// Nodes of each guide of the trails, the root included (which is not stored):
+        /// `GUIDE_NODES`, or a far jellyfish's thinned `THIN_NODES` (`sim::guides`).
+        H_TRAIL_NODES = 37;
         /// Header length.
-        HEADER = 37;
+        HEADER = 38;
         /// Set in `H_FRAME` where the frame is in the recorded buffer (a far jellyfish's
         /// recorded step), not in the shape buffer.
         RECORDED_FRAME = 1 << 31;
         /// The `MeshTag` of a CPU mesh wearing the template material: the vertex shader
         /// draws its vertices as they are (no slot is this large).
         CPU_MESH_TAG = u32::MAX as usize;
-        /// Values per guide of the trail: the offsets (x, y, z) of its nodes after the
-        /// root (which never moves), as halves (IEEE binary16: 24 µm at 5 cm), two to a
-        /// value, the first in its low bits.
-        TRAIL = 3 * (GUIDE_NODES - 1) / 2;
+        /// Values per guide of a trail of `GUIDE_NODES` nodes (`trail_values`): the
+        /// offsets (x, y, z) of its nodes after the root (which never moves), as halves
+        /// (IEEE binary16: 24 µm at 5 cm), two to a value, the first in its low bits.
+        TRAIL = trail_values(GUIDE_NODES);
         /// Values per disc: centre (x, y), radius, radial (x, y).
         DISC = 5;
         /// Values per pair of mesoglea normals: left (x, y), then right (x, y).

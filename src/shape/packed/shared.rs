@@ -14,12 +14,22 @@ use crate::shape::input::ShapeError;
 use crate::shape::mesh::Resolution;
 use crate::shape::variation::Variation;
 use crate::sim::SliceView;
-use crate::sim::guides::{GUIDE_NODES, Trail};
+use crate::sim::guides::{THIN_NODES, Trail};
 use crate::species::Species;
 
+/// Guides of a far jellyfish's thinned trail (`Trail::thin_into`), at most: the
+/// fringe's sweep at four points around the margin, its root, middle and tip each, is
+/// what a jellyfish a few pixels wide shows of it, and keeps its instance at 16 values.
+pub const FAR_GUIDES: usize = 4;
+
+/// Guides of a far jellyfish's trail at `res`.
+pub fn far_guides(res: &Resolution) -> usize {
+    res.guides.min(FAR_GUIDES)
+}
+
 /// Appends the frame of a recorded step for far jellyfish: the block of `view` without
-/// trails, saying that each instance carries the resolution's fringe guides right after
-/// its own words. On error nothing is appended.
+/// trails, saying that each instance carries its thinned fringe ([`far_guides`] of
+/// [`THIN_NODES`]) right after its own words. On error nothing is appended.
 pub fn pack_frame(
     packer: &mut ShapePacker,
     view: &SliceView,
@@ -36,16 +46,17 @@ pub fn pack_frame(
     packer.pack(&still, species, res, 0, 0.0, out)?;
     let header = &mut out[start..];
     let bits = |v: usize| f32::from_bits(v as u32);
-    header[H_GUIDES] = bits(res.guides);
+    header[H_GUIDES] = bits(far_guides(&res));
     header[H_ORAL_GUIDES] = bits(0);
     header[H_TRAILS] = bits(INSTANCE);
+    header[H_TRAIL_NODES] = bits(THIN_NODES);
     Ok(())
 }
 
 /// Appends a far jellyfish's own words ([`INSTANCE`] values: its `seed`, its noise at
-/// `time` (s), `H_FRAME` left for the upload) and its fringe's trail: the resolution's
-/// guides, zero where its guides are not followed (a far jellyfish does not follow its
-/// oral arms).
+/// `time` (s), `H_FRAME` left for the upload) and its thinned fringe `trail`
+/// (`Trail::thin_into` with [`far_guides`]); zeros where it has no such trail (its guides
+/// not followed). A far jellyfish does not follow its oral arms.
 pub fn pack_instance(
     species: &Species,
     res: &Resolution,
@@ -62,16 +73,16 @@ pub fn pack_instance(
     own[H_TAU] = variation.time_coordinate() as f32;
     own[H_UNSTRUCTURED] = variation.unstructured_amplitude();
     own[H_FRAME] = f32::from_bits(0);
-    if trail.guides() == res.guides {
-        for nodes in trail.offsets.chunks_exact(GUIDE_NODES) {
+    if trail.nodes == THIN_NODES && trail.guides() == far_guides(res) {
+        for nodes in trail.offsets.chunks_exact(THIN_NODES) {
             write_halves(&nodes[1..], out);
         }
     } else {
-        out.resize(out.len() + res.guides * TRAIL, 0.0);
+        out.resize(start + instance_len(res), 0.0);
     }
 }
 
-/// Values of a far jellyfish's instance at `res`.
+/// Values of a far jellyfish's instance at `res`: 16 at most (64 bytes).
 pub fn instance_len(res: &Resolution) -> usize {
-    INSTANCE + res.guides * TRAIL
+    INSTANCE + far_guides(res) * trail_values(THIN_NODES)
 }

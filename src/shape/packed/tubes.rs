@@ -48,8 +48,10 @@ fn trail_offset(b: Block, sigma: f32, fraction: f32) -> Vec3 {
     if guides == 0 {
         return Vec3::ZERO;
     }
-    let start = b.trail_start();
-    crate::sim::guides::between(guides, sigma, fraction, |g, m| b.trail_node(start, g, m))
+    let (start, nodes) = (b.trail_start(), b.trail_nodes());
+    crate::sim::guides::between(guides, nodes, sigma, fraction, |g, m| {
+        b.trail_node(start, g, m)
+    })
 }
 
 /// The oral tube `t`'s offset `f` of the way down, as `Trail::along` reads its guide.
@@ -57,8 +59,9 @@ fn oral_trail_offset(b: Block, t: usize, f: f32) -> Vec3 {
     if b.count(H_ORAL_GUIDES) == 0 {
         return Vec3::ZERO;
     }
-    let start = b.trail_start() + b.count(H_GUIDES) * TRAIL;
-    crate::sim::guides::along(f, |m| b.trail_node(start, t, m))
+    let nodes = b.trail_nodes();
+    let start = b.trail_start() + b.count(H_GUIDES) * trail_values(nodes);
+    crate::sim::guides::along(nodes, f, |m| b.trail_node(start, t, m))
 }
 
 /// Where a vertex of a run of tubes lies: tube `tube`, ring `ring` along it, and on the

@@ -26,7 +26,7 @@ mod trail;
 mod water;
 
 pub use solid::Solid;
-pub use trail::{Trail, along, between};
+pub use trail::{THIN_NODES, Trail, along, between};
 pub use water::read_along;
 
 use crate::species::Species;

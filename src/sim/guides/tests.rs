@@ -252,3 +252,42 @@ fn a_guide_hanging_from_the_apex_pushed_up_stays_in_the_cavity() {
         }
     }
 }
+
+/// A thinned trail keeps the guides it samples where they are: at guides that divide the
+/// full trail's, its middles and tips are the full trail's own nodes, and between them
+/// it is linear; it never has more guides than the trail it thins.
+#[test]
+fn a_thinned_trail_reads_the_full_trail_at_its_nodes() {
+    let guides = 8;
+    let offsets: Vec<Vec3> = (0..guides * GUIDE_NODES)
+        .map(|k| {
+            let (g, m) = ((k / GUIDE_NODES) as f32, (k % GUIDE_NODES) as f32);
+            Vec3::new(0.001 * m * (1.0 + g), -0.002 * m * m, 0.0005 * g * m)
+        })
+        .collect();
+    let full = Trail::new(&offsets);
+    let mut out = Vec::new();
+    let thin = full.thin_into(4, &mut out);
+    assert_eq!((thin.guides(), thin.nodes), (4, THIN_NODES));
+    for g in 0..4 {
+        let sigma = std::f32::consts::TAU * g as f32 / 4.0;
+        for (fraction, m) in [(0.0, 0), (0.5, GUIDE_NODES / 2), (1.0, GUIDE_NODES - 1)] {
+            let own = offsets[2 * g * GUIDE_NODES + m];
+            assert!(
+                thin.at(sigma, fraction).distance(own) < 1e-9,
+                "guide {g} at {fraction}"
+            );
+        }
+        // Linear from the middle to the tip.
+        let mid = (thin.at(sigma, 0.5) + thin.at(sigma, 1.0)) / 2.0;
+        assert!(thin.at(sigma, 0.75).distance(mid) < 1e-9);
+    }
+    let mut few = Vec::new();
+    assert_eq!(
+        Trail::new(&offsets[..2 * GUIDE_NODES])
+            .thin_into(4, &mut few)
+            .guides(),
+        2
+    );
+    assert_eq!(Trail::NONE.thin_into(4, &mut few).guides(), 0);
+}

@@ -32,6 +32,9 @@
 // Every function's `base` is where the frame starts in that buffer.
 var<private> individual_at: u32;
 var<private> frame_is_recorded: bool;
+// The trails' nodes per guide (packed::H_TRAIL_NODES) and values per guide.
+var<private> trail_nodes: u32;
+var<private> trail_stride: u32;
 
 // A value of the frame (packed::Block::value).
 fn frame_value(at: u32) -> f32 {
@@ -410,7 +413,7 @@ fn trail_node(start: u32, g: u32, m: u32) -> vec3<f32> {
 
 // Half `h` of guide g's values: two to a value, the first in its low bits.
 fn trail_half(start: u32, g: u32, h: u32) -> f32 {
-    let pair = bitcast<u32>(shapes[start + g * packed::TRAIL + h / 2u]);
+    let pair = bitcast<u32>(shapes[start + g * trail_stride + h / 2u]);
     return half_to_f32((pair >> (16u * (h & 1u))) & 0xffffu);
 }
 
@@ -431,10 +434,15 @@ fn trail_start(base: u32) -> u32 {
     return individual_at + count(base, packed::H_TRAILS);
 }
 
+// packed::layout::trail_values: values per guide of `nodes` nodes.
+fn trail_values(nodes: u32) -> u32 {
+    return 3u * (nodes - 1u) / 2u;
+}
+
 // sim::guides::along: guide g's offset `fraction` of the way down, linear between nodes.
 fn trail_along(start: u32, g: u32, fraction: f32) -> vec3<f32> {
-    let along = clamp(fraction, 0.0, 1.0) * f32(packed::GUIDE_NODES - 1u);
-    let m = min(u32(along), packed::GUIDE_NODES - 2u);
+    let along = clamp(fraction, 0.0, 1.0) * f32(trail_nodes - 1u);
+    let m = min(u32(along), trail_nodes - 2u);
     let v = along - f32(m);
     return trail_node(start, g, m) + (trail_node(start, g, m + 1u) - trail_node(start, g, m)) * v;
 }
@@ -460,7 +468,7 @@ fn oral_trail_offset(base: u32, t: u32, fraction: f32) -> vec3<f32> {
     if count(base, packed::H_ORAL_GUIDES) == 0u {
         return vec3(0.0);
     }
-    let start = trail_start(base) + count(base, packed::H_GUIDES) * packed::TRAIL;
+    let start = trail_start(base) + count(base, packed::H_GUIDES) * trail_stride;
     return trail_along(start, t, fraction);
 }
 
@@ -672,6 +680,8 @@ fn vertex(vertex: Vertex) -> VertexOutput {
         let frame = bitcast<u32>(shapes[individual_at + packed::H_FRAME]);
         frame_is_recorded = (frame & packed::RECORDED_FRAME) != 0u;
         let base = frame & ~packed::RECORDED_FRAME;
+        trail_nodes = count(base, packed::H_TRAIL_NODES);
+        trail_stride = trail_values(trail_nodes);
         let local = vertex.index - mesh[vertex.instance_index].first_vertex_index;
         if (tag & 1u) == 0u {
             surface = umbrella_vertex(base, local);
