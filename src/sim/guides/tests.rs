@@ -282,6 +282,16 @@ fn a_thinned_trail_reads_the_full_trail_at_its_nodes() {
         let mid = (thin.at(sigma, 0.5) + thin.at(sigma, 1.0)) / 2.0;
         assert!(thin.at(sigma, 0.75).distance(mid) < 1e-9);
     }
+    // Six guides: four read between them.
+    let six = Trail::new(&offsets[..6 * GUIDE_NODES]);
+    let mut between = Vec::new();
+    let thin = six.thin_into(4, &mut between);
+    for g in 0..4 {
+        let sigma = std::f32::consts::TAU * g as f32 / 4.0;
+        for fraction in [0.5, 1.0] {
+            assert_eq!(thin.at(sigma, fraction), six.at(sigma, fraction));
+        }
+    }
     let mut few = Vec::new();
     assert_eq!(
         Trail::new(&offsets[..2 * GUIDE_NODES])

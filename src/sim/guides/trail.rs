@@ -71,10 +71,17 @@ impl<'a> Trail<'a> {
     /// nodes' middle is a node, these are its own nodes. Returns the thinned trail.
     pub fn thin_into<'b>(&self, guides: usize, out: &'b mut Vec<Vec3>) -> Trail<'b> {
         out.clear();
-        let guides = guides.min(self.guides());
+        let (all, n) = (self.guides(), self.nodes);
+        let guides = guides.min(all);
         for g in 0..guides {
-            let sigma = TAU * g as f32 / guides as f32;
-            out.extend([Vec3::ZERO, self.at(sigma, 0.5), self.at(sigma, 1.0)]);
+            // Its own nodes where it has them (what `at` reads there, without the search).
+            if all.is_multiple_of(guides) && n % 2 == 1 {
+                let own = &self.offsets[g * (all / guides) * n..];
+                out.extend([Vec3::ZERO, own[n / 2], own[n - 1]]);
+            } else {
+                let sigma = TAU * g as f32 / guides as f32;
+                out.extend([Vec3::ZERO, self.at(sigma, 0.5), self.at(sigma, 1.0)]);
+            }
         }
         Trail {
             offsets: out,
