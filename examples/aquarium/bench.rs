@@ -20,12 +20,14 @@ use std::time::{Duration, Instant};
 const READY_TIMEOUT: Duration = Duration::from_secs(120);
 
 /// Runs `frames` frames at `fps` after a warm-up and prints wall and CPU time per frame,
-/// the spread of frame times, and the mesh data handed to the renderer. Errors if the
-/// schools never start (a species that does not load).
+/// the spread of frame times, and the mesh data handed to the renderer; then, with
+/// `burst` above 0, spawns that many more at once and edits a species
+/// ([`crate::burst`]). Errors if the schools never start (a species that does not load).
 pub fn run(
     school: School,
     frames: usize,
     fps: f64,
+    burst: usize,
     settings: JellyfishSettings,
     pools: TaskPoolPlugin,
 ) -> Result<(), String> {
@@ -122,6 +124,10 @@ pub fn run(
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
     println!("tank water: {:.2} ms per frame (one thread)", water / n);
     println!("state hash: {:016x}", state_hash(&mut app));
+    if burst > 0 {
+        crate::burst::edit(&mut app, p99, fps)?;
+        crate::burst::spawn(&mut app, burst, fps)?;
+    }
     Ok(())
 }
 
@@ -298,7 +304,7 @@ pub fn value(store: &DiagnosticsStore, path: &DiagnosticPath) -> f64 {
     store.get(path).and_then(|d| d.value()).unwrap_or(0.0)
 }
 
-fn count(app: &App) -> f64 {
+pub fn count(app: &App) -> f64 {
     value(
         app.world().resource::<DiagnosticsStore>(),
         &JellyfishDiagnostics::COUNT,

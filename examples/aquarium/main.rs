@@ -22,13 +22,16 @@
 //! the spread of frame times and the mesh data handed to the renderer:
 //! `cargo run --release --features examples --example aquarium -- --bench --count 100
 //! --frames 600 --fps 60`. It ends with a hash of every jellyfish's pose, phase and tier:
-//! with `--threads N` (N threads in the compute pool), the same for any N.
+//! with `--threads N` (N threads in the compute pool), the same for any N. With `--burst
+//! 1000` it then spawns a thousand more at once and edits a species, and prints those
+//! frames against the run's p99.
 //!
 //! The soak, `-- --soak SECONDS --count 334`: the same for longer, with churn (jellyfish
 //! despawned and spawned, species edited, a species file rewritten valid and broken, the
 //! tank stirred), ending with one line of memory and failures.
 
 mod bench;
+mod burst;
 mod camera;
 #[path = "../common/species.rs"]
 mod common;
@@ -95,6 +98,10 @@ struct Args {
     /// the headless benchmark: no renderer, prints what a frame costs
     #[argh(switch)]
     bench: bool,
+    /// the benchmark, after its run: spawn this many more jellyfish at once, then edit a
+    /// species so its stroke is recorded again, each measured against the run's p99
+    #[argh(option, default = "0")]
+    burst: usize,
     /// benchmark frames per second (default 60)
     #[argh(option, default = "60.0", from_str_fn(fps))]
     fps: f64,
@@ -194,6 +201,7 @@ fn main() -> ExitCode {
             args.school(),
             frames,
             args.fps,
+            args.burst,
             args.headless(),
             task_pools(args.threads),
         )

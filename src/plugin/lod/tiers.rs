@@ -50,17 +50,29 @@ pub(super) fn change_tiers(
         .collect();
     caches.retain(&in_use);
     // The cycles of live slices just edited, for when they move away: recorded in the
-    // background from now.
+    // background from now, the mid tier's compact variant too (recorded in the frame a
+    // jellyfish first moved to it, it stalled that frame by a tenth of a second or more).
+    let mut edits: Vec<Species> = Vec::new();
     for SliceEdited(species) in edited.read() {
-        caches.request(species);
-    }
-    caches.collect();
-    // Far jellyfish of an edited species take its cycle once it is recorded.
-    for (_, mut slice, mut history, ..) in &mut jellyfish {
-        let wanted = slice.replay.as_ref().and_then(|r| r.wanted.clone());
-        if let Some(cache) = wanted.and_then(|w| caches.request(&w)) {
-            switch_cycle(&mut slice, &mut history, cache);
+        if !edits.contains(species) {
+            edits.push(species.clone());
         }
+    }
+    // Far jellyfish of an edited species take its cycle once it is recorded.
+    caches.collect();
+    for (_, mut slice, mut history, ..) in &mut jellyfish {
+        let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.clone()) else {
+            continue;
+        };
+        match caches.request(&wanted) {
+            Some(cache) => switch_cycle(&mut slice, &mut history, cache),
+            None if !edits.contains(&wanted) => edits.push(wanted),
+            None => {}
+        }
+    }
+    for species in &edits {
+        caches.request(species);
+        caches.request(&tier_species(species, Tier::Mid));
     }
     let ranked = &jellyfish;
     let levels = &settings.detail;
