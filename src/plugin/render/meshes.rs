@@ -1,6 +1,7 @@
 //! What a jellyfish is drawn with: its meshes (the umbrella on the jellyfish itself, the
 //! tentacles and the glow layer on children) and the path that builds them.
 
+use super::recorded::PackedCycle;
 use crate::plugin::interpolation::Snapshot;
 use crate::shape::packed::ShapePacker;
 use crate::shape::{JellyMesh, Resolution};
@@ -42,10 +43,11 @@ pub struct JellyfishMeshes {
     pub(crate) buffers: JellyMesh,
     /// Templates: the packed shape (`shape::packed`) and the slot it is uploaded to.
     pub(crate) block: Vec<f32>,
-    /// A far jellyfish's recorded step's frame, packed once for all that show it: `block`
-    /// is then only its own words and trails, and the upload points it at this frame.
+    /// A far jellyfish's recorded cycle and the step of it shown, packed once for all
+    /// that play it: `block` is then only its own words and trails, and the upload points
+    /// it at that step's frame.
     #[reflect(ignore)]
-    pub(crate) shared: Option<std::sync::Arc<[f32]>>,
+    pub(crate) shared: Option<(std::sync::Arc<PackedCycle>, u32)>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     /// A far jellyfish's thinned trail (`Trail::thin_into`), as both paths draw it.

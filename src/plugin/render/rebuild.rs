@@ -80,17 +80,13 @@ pub(super) fn build_buffers(
             let (seed, time) = (slice.seed, shown.time as f32);
             let step = step.and_then(|s| s.recorded.as_ref());
             let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
-                recorded.step(cache, *index, &slice.species, res, || {
-                    let mut frame = Vec::new();
-                    packed::pack_frame(packer, &view, &slice.species, res, &mut frame)
-                        .ok()
-                        .map(|()| frame)
-                })
+                let cycle = recorded.cycle(cache, &slice.species, res)?;
+                cycle.start(*index).map(|_| (cycle, *index))
             });
-            let built = if let Some(frame) = recorded_step {
+            let built = if let Some(step) = recorded_step {
                 block.clear();
                 packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
-                *shared = Some(frame);
+                *shared = Some(step);
                 Ok(())
             } else if templates {
                 let mut packed = std::mem::take(block);

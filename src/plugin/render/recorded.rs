@@ -1,50 +1,50 @@
-//! The far tier's recorded frames, packed once each.
+//! The far tier's recorded cycles, packed once each.
 //!
 //! Every far jellyfish of a species plays the same recorded cycle, and a frame shows one
-//! of its steps (the nearest, not a blend: [`shown_step`]). So the step's frame is packed
-//! the first time a far jellyfish shows it (`shape::packed::pack_frame`) and uploaded once
-//! (the template upload's recorded buffer), and every far jellyfish showing that step
-//! reads it: its own block is its seed, noise time and trails
-//! (`shape::packed::pack_instance`), a few dozen values instead of a few kilobytes.
+//! of its steps (the nearest, not a blend: [`shown_step`]). So the first time a far
+//! jellyfish shows a step of a cycle, every step of it is packed
+//! (`shape::packed::pack_frame`, a few milliseconds once) and the template upload sends
+//! them once, together; every far jellyfish then sends only its seed, noise time and
+//! trails (`shape::packed::pack_instance`, 64 bytes), and reads its step's frame there.
 
 use crate::plugin::interpolation::Snapshot;
 use crate::plugin::slice::same;
 use crate::shape::mesh::Resolution;
-use crate::shape::packed;
+use crate::shape::packed::{self, ShapePacker};
 use crate::sim::SliceView;
 use crate::sim::cycle::CycleCache;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
-use std::sync::{Arc, OnceLock, RwLock, Weak};
+use std::sync::{Arc, RwLock, Weak};
 
-/// Each recorded cycle's steps as packed blocks, by cycle and resolution.
+/// Each recorded cycle's steps as packed frames, by cycle and resolution.
 #[derive(Resource, Default)]
 pub(crate) struct RecordedFrames {
     cycles: RwLock<HashMap<(usize, Resolution), Arc<PackedCycle>>>,
 }
 
-/// One cycle's packed steps, for the species they were packed with.
-struct PackedCycle {
+/// One cycle's steps packed for far jellyfish, for the species they were packed with.
+pub(crate) struct PackedCycle {
     /// Keeps the cycle's allocation, so no other cycle takes its address (the key) while
     /// this entry lives; gone when no jellyfish plays it.
     cache: Weak<CycleCache>,
     species: Arc<Species>,
-    /// `None` where the step could not be packed.
-    steps: Vec<OnceLock<Option<Arc<[f32]>>>>,
+    /// Every step's frame, one after another.
+    pub(crate) frames: Vec<f32>,
+    /// Where each step's frame starts in `frames`.
+    starts: Vec<u32>,
 }
 
 impl RecordedFrames {
-    /// Step `index` of `cache` packed for `species` at `res`: `pack` packs it the first
-    /// time (any seed and time; `None` if it cannot).
-    pub(crate) fn step(
+    /// The steps of `cache` packed for `species` at `res`: all of them the first time.
+    /// `None` where a step cannot be packed (the jellyfish then packs its own block).
+    pub(crate) fn cycle(
         &self,
         cache: &Arc<CycleCache>,
-        index: u32,
         species: &Arc<Species>,
         res: Resolution,
-        pack: impl FnOnce() -> Option<Vec<f32>>,
-    ) -> Option<Arc<[f32]>> {
+    ) -> Option<Arc<PackedCycle>> {
         let key = (Arc::as_ptr(cache) as usize, res);
         let current = |c: &Arc<PackedCycle>| same(&c.species, species);
         let known = self
@@ -54,25 +54,18 @@ impl RecordedFrames {
             .get(&key)
             .filter(|c| current(c))
             .cloned();
-        let cycle = match known {
-            Some(cycle) => cycle,
-            None => {
-                let mut cycles = self.cycles.write().ok()?;
-                let entry = cycles
-                    .entry(key)
-                    .or_insert_with(|| PackedCycle::new(cache, species));
-                // A species edited without a new recording (its looks): pack again.
-                if !current(entry) {
-                    *entry = PackedCycle::new(cache, species);
-                }
-                entry.clone()
-            }
-        };
-        cycle
-            .steps
-            .get(index as usize)?
-            .get_or_init(|| pack().map(Arc::from))
-            .clone()
+        if known.is_some() {
+            return known;
+        }
+        let mut cycles = self.cycles.write().ok()?;
+        // Packed by another thread meanwhile, or a species edited without a new
+        // recording (its looks): pack again.
+        if let Some(cycle) = cycles.get(&key).filter(|c| current(c)) {
+            return Some(cycle.clone());
+        }
+        let cycle = Arc::new(PackedCycle::pack(cache, species, res)?);
+        cycles.insert(key, cycle.clone());
+        Some(cycle)
     }
 
     /// Forgets the cycles no jellyfish plays any more.
@@ -84,14 +77,28 @@ impl RecordedFrames {
 }
 
 impl PackedCycle {
-    fn new(cache: &Arc<CycleCache>, species: &Arc<Species>) -> Arc<Self> {
-        Arc::new(Self {
+    fn pack(cache: &Arc<CycleCache>, species: &Arc<Species>, res: Resolution) -> Option<Self> {
+        let mut packer = ShapePacker::default();
+        let mut step = Snapshot::default();
+        let mut frames = Vec::new();
+        let mut starts = Vec::new();
+        for index in 0..cache.steps_per_cycle() {
+            step.copy_frame(cache, index, 0.0, 0.0);
+            starts.push(frames.len() as u32);
+            let view = step.view(cache.rest_bell());
+            packed::pack_frame(&mut packer, &view, species, res, &mut frames).ok()?;
+        }
+        Some(Self {
             cache: Arc::downgrade(cache),
             species: species.clone(),
-            steps: (0..cache.steps_per_cycle())
-                .map(|_| OnceLock::new())
-                .collect(),
+            frames,
+            starts,
         })
+    }
+
+    /// Where step `index`'s frame starts in [`Self::frames`].
+    pub(crate) fn start(&self, index: u32) -> Option<u32> {
+        self.starts.get(index as usize).copied()
     }
 }
 

@@ -3,16 +3,17 @@
 //! Three storage buffers. `offsets[slot]` is where slot's words start in `shapes`. A
 //! jellyfish keeps its slot for life (its `MeshTag`), so jellyfish coming and going never
 //! re-tag the others. `shapes`, written every frame, holds a near jellyfish's whole block
-//! and a far one's own words and trails (`shape::packed::pack_instance`, a few dozen
-//! values). `recorded` holds the frames of the recorded steps far jellyfish show, each
-//! written once and uploaded only when a step is new (a species' first cycle, or after an
-//! edit records it again); each block's `H_FRAME` says where its frame starts, and in
+//! and a far one's own words and trails (`shape::packed::pack_instance`, 16 values).
+//! `recorded` holds the frames of every step of the recorded cycles far jellyfish play,
+//! uploaded only when a cycle is new (a species' first far jellyfish, or after an edit
+//! records its stroke again); each block's `H_FRAME` says where its frame starts, and in
 //! which buffer. The buffers grow by a quarter when they must, shrink when less than half
 //! used, and otherwise keep their size between frames so Bevy writes them in place; a new
 //! size rebinds the materials.
 
 use super::material::SurfaceMaterial;
 use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
+use crate::plugin::render::recorded::PackedCycle;
 use crate::plugin::timings::JellyfishTimings;
 use crate::shape::packed::layout::{H_FRAME, RECORDED_FRAME};
 use bevy::asset::RenderAssetUsages;
@@ -85,39 +86,43 @@ impl SurfaceSlots {
     }
 }
 
-/// The recorded buffer's contents: each recorded frame a far jellyfish showed, once.
+/// The recorded buffer's contents: each recorded cycle far jellyfish play, its steps'
+/// frames written together once.
 #[derive(Default)]
 pub(crate) struct RecordedLayout {
-    /// Each frame by address, held so that no other frame takes its address, and where
-    /// it starts in `words`.
-    start: HashMap<usize, (Arc<[f32]>, u32)>,
+    /// Each cycle by address, held so that no other cycle takes its address, and where
+    /// its frames start in `words`.
+    base: HashMap<usize, (Arc<PackedCycle>, u32)>,
     words: Vec<f32>,
     /// Whether `words` changed since it was last uploaded.
     changed: bool,
 }
 
 impl RecordedLayout {
-    /// Where `frame` starts, written the first time.
-    fn start(&mut self, frame: &Arc<[f32]>) -> u32 {
-        let key = frame.as_ptr() as usize;
-        if let Some((_, at)) = self.start.get(&key) {
-            return *at;
-        }
-        let at = self.words.len() as u32;
-        self.words.extend_from_slice(frame);
-        self.start.insert(key, (frame.clone(), at));
-        self.changed = true;
-        at
+    /// Where step `index` of `cycle` starts, the cycle written the first time.
+    fn start(&mut self, cycle: &Arc<PackedCycle>, index: u32) -> u32 {
+        let key = Arc::as_ptr(cycle) as usize;
+        let base = match self.base.get(&key) {
+            Some((_, base)) => *base,
+            None => {
+                let base = self.words.len() as u32;
+                self.words.extend_from_slice(&cycle.frames);
+                self.base.insert(key, (cycle.clone(), base));
+                self.changed = true;
+                base
+            }
+        };
+        base + cycle.start(index).unwrap_or(0)
     }
 
-    /// Starts again, empty, when more than half of it is frames of cycles no jellyfish
-    /// plays any more (held here alone: a species edited and recorded again, or gone).
+    /// Starts again, empty, when more than half of it is cycles no jellyfish plays any
+    /// more (held here alone: a species edited and recorded again, or gone).
     fn compact(&mut self) {
         let dead: usize = self
-            .start
+            .base
             .values()
-            .filter(|(frame, _)| Arc::strong_count(frame) == 1)
-            .map(|(frame, _)| frame.len())
+            .filter(|(cycle, _)| Arc::strong_count(cycle) == 1)
+            .map(|(cycle, _)| cycle.frames.len())
             .sum();
         if 2 * dead > self.words.len() {
             *self = Self::default();
@@ -157,7 +162,7 @@ pub(crate) fn upload(
             extend_words(&mut shapes, &meshes.block);
             // A far jellyfish's frame is its recorded step's, in the recorded buffer.
             let frame = match &meshes.shared {
-                Some(frame) => RECORDED_FRAME as u32 | recorded.start(frame),
+                Some((cycle, index)) => RECORDED_FRAME as u32 | recorded.start(cycle, *index),
                 None => start,
             };
             set_word(&mut shapes, start as usize + H_FRAME, frame);
