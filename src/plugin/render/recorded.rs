@@ -68,10 +68,11 @@ impl RecordedFrames {
         Some(cycle)
     }
 
-    /// Forgets the cycles no jellyfish plays any more.
+    /// Forgets the cycles no jellyfish plays any more: their recording gone, or held by
+    /// nothing but this (no far jellyfish, nor the upload, draws from them).
     pub(crate) fn prune(&self) {
         if let Ok(mut cycles) = self.cycles.write() {
-            cycles.retain(|_, c| c.cache.strong_count() > 0);
+            cycles.retain(|_, c| c.cache.strong_count() > 0 && Arc::strong_count(c) > 1);
         }
     }
 }

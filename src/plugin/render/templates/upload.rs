@@ -90,24 +90,33 @@ impl SurfaceSlots {
 /// frames written together once.
 #[derive(Default)]
 pub(crate) struct RecordedLayout {
-    /// Each cycle by address, held so that no other cycle takes its address, and where
-    /// its frames start in `words`.
-    base: HashMap<usize, (Arc<PackedCycle>, u32)>,
+    /// Each cycle by address, held so that no other cycle takes its address: where its
+    /// frames start in `words`, and the last frame that drew from it.
+    base: HashMap<usize, (Arc<PackedCycle>, u32, u64)>,
     words: Vec<f32>,
     /// Whether `words` changed since it was last uploaded.
     changed: bool,
+    /// Frames counted.
+    frame: u64,
 }
+
+/// Frames a cycle stays in the recorded buffer without a far jellyfish playing it.
+const UNPLAYED_FRAMES: u64 = 60;
 
 impl RecordedLayout {
     /// Where step `index` of `cycle` starts, the cycle written the first time.
     fn start(&mut self, cycle: &Arc<PackedCycle>, index: u32) -> u32 {
         let key = Arc::as_ptr(cycle) as usize;
-        let base = match self.base.get(&key) {
-            Some((_, base)) => *base,
+        let frame = self.frame;
+        let base = match self.base.get_mut(&key) {
+            Some((_, base, used)) => {
+                *used = frame;
+                *base
+            }
             None => {
                 let base = self.words.len() as u32;
                 self.words.extend_from_slice(&cycle.frames);
-                self.base.insert(key, (cycle.clone(), base));
+                self.base.insert(key, (cycle.clone(), base, frame));
                 self.changed = true;
                 base
             }
@@ -115,17 +124,21 @@ impl RecordedLayout {
         base + cycle.start(index).unwrap_or(0)
     }
 
-    /// Starts again, empty, when more than half of it is cycles no jellyfish plays any
-    /// more (held here alone: a species edited and recorded again, or gone).
-    fn compact(&mut self) {
-        let dead: usize = self
+    /// A new frame; starts again, empty, once a cycle has gone unplayed for
+    /// [`UNPLAYED_FRAMES`] (a species edited and recorded again, another resolution, no
+    /// far jellyfish of it any more): the cycles still played are written again.
+    fn next_frame(&mut self) {
+        self.frame += 1;
+        let frame = self.frame;
+        if self
             .base
             .values()
-            .filter(|(cycle, _)| Arc::strong_count(cycle) == 1)
-            .map(|(cycle, _)| cycle.frames.len())
-            .sum();
-        if 2 * dead > self.words.len() {
-            *self = Self::default();
+            .any(|(.., used)| frame - used > UNPLAYED_FRAMES)
+        {
+            *self = Self {
+                frame,
+                ..Self::default()
+            };
         }
     }
 }
@@ -151,7 +164,7 @@ pub(crate) fn upload(
     // Gathered straight into the bytes handed to the renderer (each frame's go to the
     // render world): one copy a frame, not two.
     let mut shapes: Vec<u8> = Vec::with_capacity(4 * buffers.capacity[1]);
-    recorded.compact();
+    recorded.next_frame();
     for meshes in &jellyfish {
         if meshes.path == Some(SurfacePath::Templates)
             && let Some(slot) = meshes.slot
