@@ -13,7 +13,12 @@
 //! `rings + 1` rings of `RING` values (subumbrella disc, exumbrella disc, the two
 //! mesoglea normals, latitude, contraction), then `points` tentacle discs of `DISC`,
 //! then, if the species has oral tubes, [`oral::disc_count`] manubrium discs and as many
-//! arm discs. The offsets and sizes are one table (`packed::layout`), which the plugin
+//! arm discs, then the trails. The header's first `INSTANCE` values are the individual's
+//! (seed, noise time and amplitude, `H_FRAME`); the rest of it, the rings and the discs are
+//! the *frame*, which depends on the slice and the species alone: a far jellyfish sends
+//! only its own words and trails ([`pack_instance`]) and reads the frame of the recorded
+//! step it shows ([`pack_frame`], packed once for all). The offsets and sizes are one
+//! table (`packed::layout`), which the plugin
 //! also hands the shader as the WGSL module `bevy_jellyfish::packed`: the shader imports
 //! them rather than copying them.
 //!

@@ -53,7 +53,7 @@ pub fn pack_frame(
     Ok(())
 }
 
-/// Appends a far jellyfish's own words ([`INSTANCE`] values: its `seed`, its noise at
+/// Appends a far jellyfish's own words (`INSTANCE` values: its `seed`, its noise at
 /// `time` (s), `H_FRAME` left for the upload) and its thinned fringe `trail`
 /// (`Trail::thin_into` with [`far_guides`]); zeros where it has no such trail (its guides
 /// not followed). A far jellyfish does not follow its oral arms.

@@ -3,6 +3,8 @@
 // A template mesh (one per resolution) carries only topology and UVs; each instance's
 // `MeshTag` picks its shape block (tag >> 1) and its part (tag & 1: 0 the umbrella, 1 the
 // tentacles), and this shader turns the vertex's index into its position and normal. A
+// block is the individual's own words, whose `H_FRAME` says where the rest is: in the
+// block itself, or (a far jellyfish) its recorded step's frame in `recorded`. A
 // CPU mesh wearing the same material (tag CPU_MESH_TAG) is drawn as it is. It
 // mirrors `shape::packed` (`umbrella_vertex`, `tentacle_vertex`) and `shape::perlin` line
 // for line: change one, change the other (the Rust mirror is tested against the CPU mesh).
