@@ -172,17 +172,22 @@ fn a_block_leaves_out_trails_that_move_nothing() {
             "{name}"
         );
         let mesh = JellyMesh::from_slice(&s.view(), &species, 7, 1.0).unwrap();
-        let worst = (0..mesh.tentacles.vertex_count())
-            .map(|i| {
-                let cpu = Vec3::from_array(mesh.tentacles.positions[i]);
-                tentacle_vertex(b, i).position.distance(cpu)
-            })
-            .fold(0.0f32, f32::max);
+        let worst = worst_tentacle_vertex(b, &mesh);
         assert!(
             worst < 1e-5,
             "{name}: a tentacle vertex {worst:.2e} m off the CPU's"
         );
     }
+}
+
+/// How far the block's tentacle vertices lie from the CPU mesh's, at worst (m).
+fn worst_tentacle_vertex(b: Block, mesh: &JellyMesh) -> f32 {
+    (0..mesh.tentacles.vertex_count())
+        .map(|i| {
+            let cpu = Vec3::from_array(mesh.tentacles.positions[i]);
+            tentacle_vertex(b, i).position.distance(cpu)
+        })
+        .fold(0.0f32, f32::max)
 }
 
 /// `v` as the packed shape carries a trail: each component rounded to a half.
@@ -275,12 +280,7 @@ fn a_shared_frame_with_its_own_words_is_its_own_block() {
         }
         let mesh = JellyMesh::from_slice(&view, &species, seed, time).unwrap();
         assert!(mesh.tentacles.vertex_count() > 0);
-        let worst = (0..mesh.tentacles.vertex_count())
-            .map(|i| {
-                let cpu = Vec3::from_array(mesh.tentacles.positions[i]);
-                tentacle_vertex(far, i).position.distance(cpu)
-            })
-            .fold(0.0f32, f32::max);
+        let worst = worst_tentacle_vertex(far, &mesh);
         assert!(
             worst < 1e-5,
             "seed {seed} at {time} s: a tentacle vertex {worst:.2e} m off the CPU's"
