@@ -65,9 +65,16 @@ impl Neighbours {
         self.buckets.entry(key).or_default().push(index);
     }
 
-    /// Every index filed within the cube of half-side `range` around `p` (a superset of
-    /// those within `range` of it), in no particular order.
-    pub(super) fn around(&self, p: Vec3, range: f32, mut visit: impl FnMut(usize)) {
+    /// Whether `hit` holds for any index filed within the cube of half-side `range`
+    /// around `p` (a superset of those within `range` of it), asking in no particular
+    /// order and stopping at the first: placing a member in a crowded box rejects most
+    /// places at their first neighbour.
+    pub(super) fn any_around(
+        &self,
+        p: Vec3,
+        range: f32,
+        mut hit: impl FnMut(usize) -> bool,
+    ) -> bool {
         let range = if range.is_finite() {
             range.max(0.0)
         } else {
@@ -78,22 +85,22 @@ impl Neighbours {
         // A range of many cubes is cheaper read bucket by bucket than cube by cube.
         let cubes = (hi - lo + IVec3::ONE).as_i64vec3();
         if cubes.x * cubes.y * cubes.z > self.buckets.len() as i64 {
-            for (key, indices) in &self.buckets {
-                if key.cmpge(lo).all() && key.cmple(hi).all() {
-                    indices.iter().copied().for_each(&mut visit);
-                }
-            }
-            return;
+            return self.buckets.iter().any(|(key, indices)| {
+                key.cmpge(lo).all() && key.cmple(hi).all() && indices.iter().any(|i| hit(*i))
+            });
         }
         for x in lo.x..=hi.x {
             for y in lo.y..=hi.y {
                 for z in lo.z..=hi.z {
-                    if let Some(indices) = self.buckets.get(&IVec3::new(x, y, z)) {
-                        indices.iter().copied().for_each(&mut visit);
+                    if let Some(indices) = self.buckets.get(&IVec3::new(x, y, z))
+                        && indices.iter().any(|i| hit(*i))
+                    {
+                        return true;
                     }
                 }
             }
         }
+        false
     }
 }
 
@@ -200,11 +207,13 @@ mod tests {
             for range in [0.2, 1.0, 2.5, 40.0] {
                 for (p, _) in points.iter().take(60) {
                     let mut found = Vec::new();
-                    grid.around(*p, range, |i| {
+                    let any = grid.any_around(*p, range, |i| {
                         if points[i].0.distance(*p) < range {
                             found.push(i);
                         }
+                        false
                     });
+                    assert!(!any);
                     found.sort_unstable();
                     let all: Vec<usize> = (0..points.len())
                         .filter(|&i| points[i].0.distance(*p) < range)

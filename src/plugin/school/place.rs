@@ -110,12 +110,10 @@ pub(super) fn fill_schools(
                 transform,
                 &mut spacing,
                 |p, spacing| {
-                    let mut clear = true;
-                    grid.around(p, spacing * (radius + widest), |i| {
+                    !grid.any_around(p, spacing * (radius + widest), |i| {
                         let (q, rq) = kept[i];
-                        clear &= p.distance(q) >= spacing * (radius + rq);
-                    });
-                    clear
+                        !(p.distance(q) >= spacing * (radius + rq))
+                    })
                 },
             );
             grid.insert(kept.len(), at);
