@@ -93,6 +93,17 @@ impl SliceHistory {
         });
     }
 
+    /// Starts over at `now`, the new tier's present shape, with nothing to fade: a
+    /// jellyfish that changes tier before any frame has shown it.
+    pub fn restart_at(&mut self, clock: &FixedClock, now: &Snapshot) {
+        let Some(pose) = self.states.back().map(|s| s.pose) else {
+            return;
+        };
+        self.spare.extend(self.states.drain(..));
+        self.carry = None;
+        self.record(clock, 0.0, pose, |s| s.clone_from(now));
+    }
+
     /// The newest recorded step: none before the jellyfish starts.
     pub fn newest(&self) -> Option<&Snapshot> {
         self.states.back()

@@ -194,7 +194,11 @@ fn move_to(
         };
         now.copy_frame(&cache, index, replay.clock.time(), 0.0);
         motion.swum = 0.0;
-        history.change_tier(&now, replay.clock.time(), fade);
+        if slice.fresh {
+            history.restart_at(&replay.clock, &now);
+        } else {
+            history.change_tier(&now, replay.clock.time(), fade);
+        }
         slice.sim = None;
         slice.replay = Some(replay);
     } else {
@@ -203,7 +207,11 @@ fn move_to(
         sim.resume_escape(escape);
         now.capture(&sim);
         motion.swum = sim.swim_distance();
-        history.change_tier(&now, sim.clock().time(), fade);
+        if slice.fresh {
+            history.restart_at(sim.clock(), &now);
+        } else {
+            history.change_tier(&now, sim.clock().time(), fade);
+        }
         slice.sim = Some(sim);
         slice.replay = None;
     }

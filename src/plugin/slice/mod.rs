@@ -84,6 +84,10 @@ pub struct JellyfishSlice {
     /// the same time differently end at the same state. Reset when the clock is replaced.
     #[reflect(ignore)]
     pub(crate) anchor: Option<(std::time::Duration, f64)>,
+    /// Started since the slices last stepped: no frame has shown it yet, so a change of
+    /// tier before then has nothing to fade from (a school spawned at once starts each
+    /// member in the tier the levels of detail give it).
+    pub(crate) fresh: bool,
 }
 
 impl JellyfishSlice {
@@ -190,6 +194,7 @@ impl JellyfishSlice {
         self.anchor = None;
         self.species = species;
         self.seed = seed;
+        self.fresh = true;
         self.show(history);
     }
 

@@ -75,6 +75,7 @@ pub(super) fn step_slices(
                 timings.add_simulation(slice.tier as usize, start.elapsed());
             }
             slice.show(&mut history);
+            slice.fresh = false;
         },
     );
 }

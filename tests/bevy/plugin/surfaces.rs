@@ -178,10 +178,11 @@ fn templates_share_one_mesh_and_send_kilobytes_not_meshes() {
 
 /// Far jellyfish replay their species' recorded steps, so they share the recorded
 /// cycle's frames: the renderer gets the cycle once and, from each far jellyfish, 64 bytes.
-/// Near, each jellyfish sends its whole shape every frame.
+/// Near, each jellyfish sends its whole shape every frame. Spawned beyond the budget, they
+/// send only that from their first frames: nothing was shown that a fade would hide.
 #[test]
 fn far_jellyfish_share_the_recorded_steps_they_show() {
-    let bytes_per_jellyfish = |near: usize| {
+    let bytes_per_jellyfish = |near: usize, frames: usize| {
         let mut app = template_app();
         app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
             near,
@@ -195,7 +196,7 @@ fn far_jellyfish_share_the_recorded_steps_they_show() {
             app.world_mut()
                 .spawn((Jellyfish::new(h.clone()).with_phase(0.25), at));
         }
-        run(&mut app, 40);
+        run(&mut app, frames);
         let mut q = app.world_mut().query::<&JellyfishSlice>();
         let far = q
             .iter(app.world())
@@ -204,12 +205,23 @@ fn far_jellyfish_share_the_recorded_steps_they_show() {
         assert_eq!(far, 6 - near, "near {near}");
         mesh_data_bytes(&app) / 6.0
     };
-    let (near, far) = (bytes_per_jellyfish(6), bytes_per_jellyfish(0));
-    println!("{near:.0} bytes a frame per near jellyfish, {far:.0} per far one");
+    let (near, far) = (bytes_per_jellyfish(6, 40), bytes_per_jellyfish(0, 40));
+    // The cycle is uploaded in the first frame a far jellyfish shows it; the fifth sends
+    // instances alone (a quarter-stroke fade from the shape a new slice starts in would
+    // send whole shapes for twenty frames).
+    let far_at_first = bytes_per_jellyfish(0, 5);
+    println!(
+        "{near:.0} bytes a frame per near jellyfish, {far:.0} per far one, {far_at_first:.0} \
+         in its fifth frame"
+    );
     assert!(near > 1000.0, "{near}");
     // Far: its instance and its slot's offset (the buffers' spare room shared out), no
     // frame of the cycle again.
     assert!(far < 0.1 * near, "far {far}, near {near}");
+    assert!(
+        far_at_first < 0.1 * near,
+        "far {far_at_first} in its fifth frame, near {near}"
+    );
 }
 
 #[test]
