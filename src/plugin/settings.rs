@@ -73,6 +73,11 @@ pub struct DetailLevels {
     /// At most this many jellyfish move to a nearer tier in one frame (each resumes a
     /// slice: a copy and up to three steps).
     pub promotions_per_frame: usize,
+    /// Steps a frame of each cycle recorded after an edit (a species' far cycle and its
+    /// compact variant, side by side): more records sooner, fewer keeps the frames as
+    /// short as they were. A count, not a time, so the new cycle arrives on the same frame
+    /// in every run.
+    pub recording_steps_per_frame: u32,
 }
 
 impl Default for DetailLevels {
@@ -84,6 +89,7 @@ impl Default for DetailLevels {
             mid_size: 0.0,
             hysteresis: 0.25,
             promotions_per_frame: 12,
+            recording_steps_per_frame: 24,
         }
     }
 }

@@ -88,51 +88,15 @@ impl std::fmt::Debug for CycleCache {
 
 impl CycleCache {
     /// Runs `species` from rest until its stroke has settled ([`SETTLED`]) and records the
-    /// next cycle: the cost of 10 to 60 cycles of one live slice (0.1 to 1 s).
+    /// next cycle: the cost of 10 to 60 cycles of one live slice (0.1 to 1 s). At once;
+    /// [`CycleRecorder`] takes the same steps a few at a time.
     pub fn record(species: &Species) -> Result<Self, SpeciesError> {
-        let mut sim = SliceSim::new(species)?;
-        let per_cycle = sim.clock().steps_per_cycle();
-        let mut last = f32::NAN;
-        for cycle in 1..=MAX_WARM_UP_CYCLES {
-            let start = sim.swim_distance();
-            for _ in 0..per_cycle {
-                sim.step_once();
-            }
-            let swum = sim.swim_distance() - start;
-            let settled = (swum - last).abs() <= SETTLED * swum.abs().max(1e-9);
-            if cycle >= MIN_WARM_UP_CYCLES && settled {
-                break;
-            }
-            last = swum;
-        }
-        // One contiguous pass, from the state at index 0 (whole cycles of warm-up end
-        // there) to the step that wraps back to it: every frame and state comes from the
-        // same cycle, so resuming at any index shows exactly the recorded frame. The
-        // wrapping step gives frame 0 its surge only.
-        debug_assert_eq!(Self::index_of(&sim), 0);
-        let mut frames = vec![CycleFrame::capture(&sim, 0.0); per_cycle as usize];
-        let mut states: Vec<Option<SliceSim>> =
-            vec![None; per_cycle.div_ceil(STATE_STRIDE) as usize];
-        states[0] = Some(sim.clone());
-        for _ in 0..per_cycle {
-            let before = sim.swim_distance();
-            sim.step_once();
-            let (index, surge) = (Self::index_of(&sim), sim.swim_distance() - before);
-            if index == 0 {
-                frames[0].surge = surge;
-            } else {
-                frames[index as usize] = CycleFrame::capture(&sim, surge);
-                if index % STATE_STRIDE == 0 {
-                    states[(index / STATE_STRIDE) as usize] = Some(sim.clone());
-                }
+        let mut recorder = CycleRecorder::new(species)?;
+        loop {
+            if let Some(cache) = recorder.advance(u32::MAX) {
+                return Ok(cache);
             }
         }
-        Ok(Self {
-            species: species.clone(),
-            frames,
-            states: states.into_iter().flatten().collect(),
-            rest_bell: sim.view().rest_bell.to_vec(),
-        })
     }
 
     /// The species it was recorded for.
@@ -191,6 +155,140 @@ impl CycleCache {
         };
         self.frames.iter().map(frame).sum::<usize>()
             + self.states.iter().map(SliceSim::bytes).sum::<usize>()
+    }
+}
+
+/// [`CycleCache::record`] a few steps at a time: a species recorded over many frames, a
+/// bounded number of steps in each, instead of all at once or on a thread that competes
+/// with the frame for the cores. The same steps in the same order, so the same cycle, bit
+/// for bit; and a count of steps, not a time, so it ends on the same frame in every run.
+pub struct CycleRecorder {
+    species: Species,
+    sim: SliceSim,
+    per_cycle: u32,
+    stage: Stage,
+}
+
+/// Where a recording is.
+enum Stage {
+    /// Running from rest: `step` steps into warm-up cycle `cycle` (from 1), which began at
+    /// swim distance `start`; the cycle before swam `last`.
+    WarmUp {
+        cycle: u32,
+        step: u32,
+        start: f32,
+        last: f32,
+    },
+    /// One contiguous pass, from the state at index 0 (whole cycles of warm-up end there)
+    /// to the step that wraps back to it: every frame and state comes from the same
+    /// cycle, so resuming at any index shows exactly the recorded frame. The wrapping step
+    /// gives frame 0 its surge only.
+    Recording {
+        step: u32,
+        frames: Vec<CycleFrame>,
+        states: Vec<Option<SliceSim>>,
+    },
+    /// Handed over.
+    Done,
+}
+
+impl CycleRecorder {
+    /// A recording of `species` from rest; a species the slice refuses is an error.
+    pub fn new(species: &Species) -> Result<Self, SpeciesError> {
+        let sim = SliceSim::new(species)?;
+        Ok(Self {
+            species: species.clone(),
+            per_cycle: sim.clock().steps_per_cycle(),
+            stage: Stage::WarmUp {
+                cycle: 1,
+                step: 0,
+                start: sim.swim_distance(),
+                last: f32::NAN,
+            },
+            sim,
+        })
+    }
+
+    /// The species being recorded.
+    pub fn species(&self) -> &Species {
+        &self.species
+    }
+
+    /// Takes at most `steps` more steps; the cycle once it is recorded (then `None`
+    /// again).
+    pub fn advance(&mut self, steps: u32) -> Option<CycleCache> {
+        let (sim, per_cycle) = (&mut self.sim, self.per_cycle);
+        let mut left = steps;
+        loop {
+            match &mut self.stage {
+                Stage::WarmUp { step, .. } if *step < per_cycle => {
+                    if left == 0 {
+                        return None;
+                    }
+                    sim.step_once();
+                    *step += 1;
+                    left -= 1;
+                }
+                Stage::WarmUp {
+                    cycle,
+                    step,
+                    start,
+                    last,
+                } => {
+                    // A whole cycle of warm-up: settled, or another.
+                    let swum = sim.swim_distance() - *start;
+                    let settled = (swum - *last).abs() <= SETTLED * swum.abs().max(1e-9);
+                    if (*cycle >= MIN_WARM_UP_CYCLES && settled) || *cycle == MAX_WARM_UP_CYCLES {
+                        debug_assert_eq!(CycleCache::index_of(sim), 0);
+                        let mut states = vec![None; per_cycle.div_ceil(STATE_STRIDE) as usize];
+                        states[0] = Some(sim.clone());
+                        self.stage = Stage::Recording {
+                            step: 0,
+                            frames: vec![CycleFrame::capture(sim, 0.0); per_cycle as usize],
+                            states,
+                        };
+                    } else {
+                        (*cycle, *step, *start, *last) = (*cycle + 1, 0, sim.swim_distance(), swum);
+                    }
+                }
+                Stage::Recording {
+                    step,
+                    frames,
+                    states,
+                } if *step < per_cycle => {
+                    if left == 0 {
+                        return None;
+                    }
+                    let before = sim.swim_distance();
+                    sim.step_once();
+                    let (index, surge) = (CycleCache::index_of(sim), sim.swim_distance() - before);
+                    if index == 0 {
+                        frames[0].surge = surge;
+                    } else {
+                        frames[index as usize] = CycleFrame::capture(sim, surge);
+                        if index % STATE_STRIDE == 0 {
+                            states[(index / STATE_STRIDE) as usize] = Some(sim.clone());
+                        }
+                    }
+                    *step += 1;
+                    left -= 1;
+                }
+                Stage::Recording { .. } => {
+                    let Stage::Recording { frames, states, .. } =
+                        std::mem::replace(&mut self.stage, Stage::Done)
+                    else {
+                        unreachable!("matched above");
+                    };
+                    return Some(CycleCache {
+                        species: self.species.clone(),
+                        frames,
+                        states: states.into_iter().flatten().collect(),
+                        rest_bell: sim.view().rest_bell.to_vec(),
+                    });
+                }
+                Stage::Done => return None,
+            }
+        }
     }
 }
 
@@ -267,6 +365,38 @@ mod tests {
             (live - replay).abs() < 0.02 * replay,
             "live {live} m/cycle vs replay {replay}"
         );
+    }
+
+    #[test]
+    fn recording_a_few_steps_at_a_time_is_the_same_cycle() {
+        let species = small();
+        let whole = CycleCache::record(&species).unwrap();
+        let mut recorder = CycleRecorder::new(&species).unwrap();
+        let mut calls = 0;
+        let piecewise = loop {
+            calls += 1;
+            if let Some(cache) = recorder.advance(7) {
+                break cache;
+            }
+        };
+        assert!(recorder.advance(7).is_none(), "handed over once");
+        // At least the warm-up and the recorded cycle, seven steps a call.
+        let n = whole.steps_per_cycle();
+        assert!(calls > (MIN_WARM_UP_CYCLES + 1) * n / 7, "{calls} calls");
+        assert_eq!(piecewise.steps_per_cycle(), n);
+        for index in 0..n {
+            let (a, b) = (whole.frame(index), piecewise.frame(index));
+            assert_eq!(a.surge.to_bits(), b.surge.to_bits(), "surge at {index}");
+            assert!(
+                a.bell
+                    .iter()
+                    .zip(&b.bell)
+                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits)),
+                "bell at {index}"
+            );
+        }
+        let (a, b) = (whole.resume(n - 1), piecewise.resume(n - 1));
+        assert_eq!(a.swim_distance().to_bits(), b.swim_distance().to_bits());
     }
 
     #[test]

@@ -20,7 +20,7 @@ mod slice;
 pub mod tank;
 pub(crate) mod trilinear;
 
-pub use cycle::CycleCache;
+pub use cycle::{CycleCache, CycleRecorder};
 pub use slice::SliceSim;
 
 use glam::Vec2;

@@ -1,23 +1,25 @@
 //! The recorded stroke cycles far jellyfish replay and nearer ones resume from.
 
-use crate::sim::cycle::CycleCache;
+use crate::sim::cycle::{CycleCache, CycleRecorder};
 use crate::species::Species;
 use bevy::prelude::*;
-use bevy::tasks::{AsyncComputeTaskPool, Task, block_on};
+use bevy::tasks::ComputeTaskPool;
 use std::sync::Arc;
 
 /// The recorded cycle of every species (and its compact-box variant) a far or resuming
 /// jellyfish has needed. Recording one costs 10 to 60 cycles of one slice (0.1–0.4 s): it
 /// is done when first needed, in that frame, so which jellyfish are far is the same in
-/// every run; after an edit it is recorded in the background while far jellyfish play the
-/// old cycle, so dragging an editor slider does not stall the app.
+/// every run; after an edit it is recorded a few steps a frame
+/// ([`DetailLevels::recording_steps_per_frame`](crate::plugin::DetailLevels)) while far
+/// jellyfish play the old cycle, so dragging an editor slider neither stalls the app nor
+/// lengthens its frames by more than those steps.
 #[derive(Resource, Default, Reflect)]
 #[reflect(Resource, Default)]
 pub struct CycleCaches {
     #[reflect(ignore)]
     caches: Vec<Arc<CycleCache>>,
     #[reflect(ignore)]
-    recording: Vec<(Species, Task<Option<CycleCache>>)>,
+    recording: Vec<CycleRecorder>,
 }
 
 impl CycleCaches {
@@ -31,35 +33,44 @@ impl CycleCaches {
         Some(cache)
     }
 
-    /// The cycle of `species` if recorded; if not, starts recording it in the background
+    /// The cycle of `species` if recorded; if not, starts recording it a few steps a frame
     /// (see [`Self::collect`]).
     pub fn request(&mut self, species: &Species) -> Option<Arc<CycleCache>> {
         if let Some(c) = self.find(species) {
             return Some(c);
         }
-        if !self.recording.iter().any(|(s, _)| s == species) {
-            let record = species.clone();
-            let task =
-                AsyncComputeTaskPool::get().spawn(async move { CycleCache::record(&record).ok() });
-            self.recording.push((species.clone(), task));
+        if !self.is_recording(species)
+            && let Ok(recorder) = CycleRecorder::new(species)
+        {
+            self.recording.push(recorder);
         }
         None
     }
 
-    /// Keeps the cycles recorded in the background that have finished.
-    pub fn collect(&mut self) {
-        let (done, running): (Vec<_>, Vec<_>) = std::mem::take(&mut self.recording)
-            .into_iter()
-            .partition(|(_, task)| task.is_finished());
-        self.recording = running;
-        for (_, task) in done {
-            if let Some(cache) = block_on(task) {
-                self.caches.push(Arc::new(cache));
-            }
+    /// Takes `steps` more steps of every recording, side by side, and keeps the cycles
+    /// that are done.
+    pub fn collect(&mut self, steps: u32) {
+        if self.recording.is_empty() {
+            return;
         }
+        let done = ComputeTaskPool::get().scope(|scope| {
+            for recorder in &mut self.recording {
+                scope.spawn(async move { recorder.advance(steps) });
+            }
+        });
+        // One result per recorder, in the order they were spawned (directly from the
+        // scope's closure, so the order is deterministic).
+        let (mut done, caches) = (done.into_iter(), &mut self.caches);
+        self.recording.retain(|_| match done.next().flatten() {
+            Some(cache) => {
+                caches.push(Arc::new(cache));
+                false
+            }
+            None => true,
+        });
     }
 
-    /// Whether any cycle is still being recorded in the background.
+    /// Whether any cycle is still being recorded.
     pub fn recording(&self) -> bool {
         !self.recording.is_empty()
     }
@@ -91,12 +102,12 @@ impl CycleCaches {
     /// dropped, which cancels them.
     pub(super) fn retain(&mut self, in_use: &[Species]) {
         self.caches.retain(|c| in_use.contains(c.species()));
-        self.recording.retain(|(s, _)| in_use.contains(s));
+        self.recording.retain(|r| in_use.contains(r.species()));
     }
 
-    /// Whether the cycle of `species` is being recorded in the background.
+    /// Whether the cycle of `species` is being recorded.
     pub fn is_recording(&self, species: &Species) -> bool {
-        self.recording.iter().any(|(s, _)| s == species)
+        self.recording.iter().any(|r| r.species() == species)
     }
 
     /// Heap bytes held.

@@ -49,8 +49,8 @@ pub(super) fn change_tiers(
         .flat_map(|s| [Species::clone(s), tier_species(s, Tier::Mid)])
         .collect();
     caches.retain(&in_use);
-    // The cycles of live slices just edited, for when they move away: recorded in the
-    // background from now, the mid tier's compact variant too (recorded in the frame a
+    // The cycles of live slices just edited, for when they move away: recorded a few
+    // steps a frame from now, the mid tier's compact variant too (recorded in the frame a
     // jellyfish first moved to it, it stalled that frame by a tenth of a second or more).
     let mut edits: Vec<Species> = Vec::new();
     for SliceEdited(species) in edited.read() {
@@ -59,7 +59,7 @@ pub(super) fn change_tiers(
         }
     }
     // Far jellyfish of an edited species take its cycle once it is recorded.
-    caches.collect();
+    caches.collect(settings.detail.recording_steps_per_frame);
     for (_, mut slice, mut history, ..) in &mut jellyfish {
         let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.clone()) else {
             continue;
@@ -112,8 +112,8 @@ pub(super) fn change_tiers(
             variants.push((slice.species.clone(), *tier, simulated));
         }
     }
-    // A species being recorded in the background (just edited) changes tier once it is
-    // ready, instead of recording it again here and stalling the frame.
+    // A species being recorded (just edited) changes tier once it is ready, instead of
+    // recording it again here and stalling the frame.
     variants.retain(|(.., simulated)| !caches.is_recording(simulated));
     caches.prepare(variants.iter().map(|v| v.2.clone()).collect());
     let plan: HashMap<Entity, (Tier, Arc<CycleCache>)> = changes

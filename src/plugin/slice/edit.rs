@@ -14,7 +14,7 @@ use bevy::prelude::*;
 type SpeciesChanged = Or<(Changed<Jellyfish>, AssetChanged<Jellyfish>)>;
 
 /// A live slice took an edited species: its cycle is wanted for when it moves away (the
-/// levels of detail record it in the background).
+/// levels of detail record it a few steps a frame).
 #[derive(Message, Clone, Debug)]
 pub(crate) struct SliceEdited(pub Species);
 
@@ -73,7 +73,7 @@ fn apply(
     let simulated = tier_species(species, slice.tier);
     slice.anchor = None;
     if let Some(sim) = slice.sim.as_mut() {
-        // Its cycle, for when it moves away: recorded in the background from now.
+        // Its cycle, for when it moves away: recorded a few steps a frame from now.
         edited.write(SliceEdited(species.clone()));
         let clock = sim.clock().clone();
         sim.set_species(&simulated)?;

@@ -162,48 +162,69 @@ fn tiers_follow_size_on_screen_and_replay_identically() {
     );
 }
 
+/// An edit records the far cycle a few steps a frame while the old one plays, then the
+/// far jellyfish plays the new one. How many frames that takes is a count of steps, so
+/// the same in every run, and fewer steps a frame spread it over more frames.
 #[test]
-fn an_edit_records_the_far_cycle_in_the_background() {
-    let mut app = app();
-    set_detail(&mut app, 1, 0);
-    let h = add_species(&mut app, species());
-    for x in [0.0, 5.0] {
-        app.world_mut()
-            .spawn((Jellyfish::new(h.clone()), Transform::from_xyz(x, 0.0, 0.0)));
-    }
-    run(&mut app, 10);
-    let edited = Species {
-        contraction_frequency: 1.0,
-        ..species()
+fn an_edit_records_the_far_cycle_a_few_steps_a_frame() {
+    let frames_to_record = |steps: u32| {
+        let mut app = app();
+        app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+            near: 1,
+            mid: 0,
+            recording_steps_per_frame: steps,
+            ..default()
+        };
+        let h = add_species(&mut app, species());
+        for x in [0.0, 5.0] {
+            app.world_mut()
+                .spawn((Jellyfish::new(h.clone()), Transform::from_xyz(x, 0.0, 0.0)));
+        }
+        run(&mut app, 10);
+        let edited = Species {
+            contraction_frequency: 1.0,
+            ..species()
+        };
+        {
+            let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
+            *assets.get_mut(&h).unwrap() = edited.clone();
+        }
+        // Frames go on while it records; the far jellyfish then plays the new cycle.
+        let mut frames = 0;
+        while app
+            .world()
+            .resource::<CycleCaches>()
+            .find(&edited)
+            .is_none()
+            || app.world().resource::<CycleCaches>().recording()
+        {
+            assert!(frames < 4000, "the edited cycle was never recorded");
+            app.update();
+            frames += 1;
+        }
+        run(&mut app, 2);
+        let mut q = app.world_mut().query::<&JellyfishSlice>();
+        let far: Vec<_> = q
+            .iter(app.world())
+            .filter(|s| s.tier() == Tier::Far)
+            .collect();
+        assert_eq!(far.len(), 1);
+        assert_eq!(far[0].species(), Some(&edited));
+        // The mid tier's compact variant too, for the first move there.
+        let caches = app.world().resource::<CycleCaches>();
+        assert!(caches.find(&edited.compact_box()).is_some());
+        frames
     };
-    {
-        let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
-        *assets.get_mut(&h).unwrap() = edited.clone();
-    }
-    // Frames go on while it records; the far jellyfish then plays the new cycle.
-    let mut frames = 0;
-    while app
-        .world()
-        .resource::<CycleCaches>()
-        .find(&edited)
-        .is_none()
-        || app.world().resource::<CycleCaches>().recording()
-    {
-        assert!(frames < 2000, "the edited cycle was never recorded");
-        app.update();
-        frames += 1;
-    }
-    run(&mut app, 2);
-    let mut q = app.world_mut().query::<&JellyfishSlice>();
-    let far: Vec<_> = q
-        .iter(app.world())
-        .filter(|s| s.tier() == Tier::Far)
-        .collect();
-    assert_eq!(far.len(), 1);
-    assert_eq!(far[0].species(), Some(&edited));
-    // The mid tier's compact variant too, for the first move there.
-    let caches = app.world().resource::<CycleCaches>();
-    assert!(caches.find(&edited.compact_box()).is_some());
+    let (a, again, quicker) = (
+        frames_to_record(24),
+        frames_to_record(24),
+        frames_to_record(96),
+    );
+    println!("recorded in {a} frames at 24 steps a frame, {quicker} at 96");
+    assert_eq!(a, again, "the same frame in every run");
+    // The warm-up alone is eight cycles of about a hundred steps.
+    assert!(a > 30, "{a} frames: spread out");
+    assert!(quicker < a / 2, "{quicker} frames at 96 steps, {a} at 24");
 }
 
 #[test]
