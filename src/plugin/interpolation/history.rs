@@ -93,12 +93,9 @@ impl SliceHistory {
         });
     }
 
-    /// Starts over at `now`, the new tier's present shape, with nothing to fade: a
-    /// jellyfish that changes tier before any frame has shown it.
-    pub fn restart_at(&mut self, clock: &FixedClock, now: &Snapshot) {
-        let Some(pose) = self.states.back().map(|s| s.pose) else {
-            return;
-        };
+    /// Starts over at `now`, the new tier's present shape, at `pose`, with nothing to
+    /// fade: a jellyfish that changes tier before any frame has shown it.
+    pub fn restart_at(&mut self, clock: &FixedClock, now: &Snapshot, pose: Pose) {
         self.spare.extend(self.states.drain(..));
         self.carry = None;
         self.record(clock, 0.0, pose, |s| s.clone_from(now));

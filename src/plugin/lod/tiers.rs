@@ -195,7 +195,8 @@ fn move_to(
         now.copy_frame(&cache, index, replay.clock.time(), 0.0);
         motion.swum = 0.0;
         if slice.fresh {
-            history.restart_at(&replay.clock, &now);
+            history.restart_at(&replay.clock, &now, motion.pose);
+            slice.rest_bell = cache.rest_bell().to_vec();
         } else {
             history.change_tier(&now, replay.clock.time(), fade);
         }
@@ -208,7 +209,8 @@ fn move_to(
         now.capture(&sim);
         motion.swum = sim.swim_distance();
         if slice.fresh {
-            history.restart_at(sim.clock(), &now);
+            history.restart_at(sim.clock(), &now, motion.pose);
+            slice.rest_bell = sim.view().rest_bell.to_vec();
         } else {
             history.change_tier(&now, sim.clock().time(), fade);
         }
@@ -217,4 +219,5 @@ fn move_to(
     }
     slice.tier = tier;
     slice.anchor = None;
+    slice.pending = None;
 }

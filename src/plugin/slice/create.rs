@@ -1,4 +1,5 @@
-//! Slices for new jellyfish, built once their species has loaded.
+//! New jellyfish started once their species has loaded: each on its own clock, its slice
+//! or replay built once the levels of detail have given it a tier.
 
 use super::JellyfishSlice;
 use super::events::{Lifecycle, LifecycleQueue};
@@ -8,21 +9,25 @@ use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::species_asset::{Refusals, SpeciesRejected};
 use crate::plugin::swimming::{Pose, SwimMotion};
 use crate::sim::SliceSim;
+use crate::sim::clock::FixedClock;
 use crate::species::{Species, SpeciesError};
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 use bevy::utils::Parallel;
 use std::sync::Arc;
 
-/// At most this many slices are built in one frame: a school of hundreds spawned at once
-/// starts over a few frames instead of in one long one. A count, not a time budget, so
-/// which jellyfish start when is the same in every run.
+/// At most this many jellyfish start in one frame: a school of hundreds spawned at once
+/// starts over a few frames instead of in one long one (each near or mid one builds a
+/// slice). A count, not a time budget, so which jellyfish start when is the same in every
+/// run.
 pub(crate) const NEW_SLICES_PER_FRAME: usize = 32;
 
-/// Builds the slice of each jellyfish whose species has loaded, in parallel, the lowest
-/// entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset starts the
-/// clock mid-stroke, which also decides which frames the slice steps on, spreading
-/// the load.
+/// Starts each jellyfish whose species has loaded (validated, or refused with the reason),
+/// the lowest entities first, at most [`NEW_SLICES_PER_FRAME`] a frame. The phase offset
+/// starts the clock mid-stroke, which also decides which frames the slice steps on,
+/// spreading the load. Nothing is built yet: the levels of detail start a far one on its
+/// species' recorded cycle and a mid one from it; one left near builds its slice when the
+/// slices step (`JellyfishSlice::build_pending`).
 #[allow(clippy::too_many_arguments)] // a system's parameters
 pub(super) fn create_slices(
     mut jellyfish: Query<(
@@ -73,17 +78,17 @@ pub(super) fn create_slices(
             let Some(simulated) = interned.get(&jelly.species.id()) else {
                 return;
             };
-            match SliceSim::new(simulated) {
-                Ok(mut sim) => {
+            match simulated.validate() {
+                Ok(()) => {
                     let seed = jelly.seed_for(entity);
-                    sim.set_time(jelly.phase_for(seed) * simulated.period());
-                    let pose = Pose::of(transform);
+                    let mut clock =
+                        FixedClock::new(simulated.period(), SliceSim::steps_per_cycle(simulated));
+                    clock.start_at((jelly.phase_for(seed) * simulated.period()) as f64);
                     *motion = SwimMotion {
-                        pose,
-                        swum: sim.swim_distance(),
+                        pose: Pose::of(transform),
                         ..default()
                     };
-                    slice.start(&mut history, sim, simulated.clone(), seed, pose);
+                    slice.start(&mut history, clock, simulated.clone(), seed);
                     events.push(entity, Lifecycle::Started);
                 }
                 Err(e) => queue.scope(|v| v.push((entity, jelly.species.id(), e))),

@@ -7,6 +7,7 @@ use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::species_asset::{Refusals, SpeciesRejected};
 use crate::plugin::swimming::SwimMotion;
+use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
 use bevy::prelude::*;
 
@@ -89,6 +90,8 @@ fn apply(
         slice.show(history);
     } else if let Some(replay) = slice.replay.as_mut() {
         replay.wanted = Some(simulated);
+    } else if let Some(clock) = slice.pending.as_mut() {
+        *clock = clock.retimed(simulated.period(), SliceSim::steps_per_cycle(&simulated));
     }
     Ok(())
 }

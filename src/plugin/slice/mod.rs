@@ -21,7 +21,7 @@ use super::schedule::JellyfishSystems;
 use super::swimming::Pose;
 use crate::sim::SliceSim;
 use crate::sim::clock::FixedClock;
-use crate::species::Species;
+use crate::species::{Species, SpeciesError};
 use bevy::math::Vec2;
 use bevy::prelude::*;
 use std::sync::Arc;
@@ -69,6 +69,11 @@ pub struct JellyfishSlice {
     /// The replayed cycle (far tier).
     #[reflect(ignore)]
     pub(crate) replay: Option<Replay>,
+    /// Started this frame, neither slice nor replay built yet: its clock, at its phase.
+    /// The levels of detail start it in the tier they give it (a far one never builds a
+    /// slice); one still waiting when the slices step starts near.
+    #[reflect(ignore)]
+    pub(crate) pending: Option<FixedClock>,
     pub(crate) tier: Tier,
     /// The species as simulated: the last valid one it was given (shared by every slice
     /// of an equal species, see [`SpeciesPool`]).
@@ -104,9 +109,10 @@ impl JellyfishSlice {
         self.sim.as_mut()
     }
 
-    /// Whether it swims yet: its species has loaded and it has a slice or a replay.
+    /// Whether it swims yet: its species has loaded (its slice or replay is built by the
+    /// time the slices step, in the frame it starts).
     pub fn started(&self) -> bool {
-        self.sim.is_some() || self.replay.is_some()
+        self.sim.is_some() || self.replay.is_some() || self.pending.is_some()
     }
 
     /// How much of it is simulated (see [`Tier`]).
@@ -124,7 +130,7 @@ impl JellyfishSlice {
         match (&self.sim, &self.replay) {
             (Some(sim), _) => Some(sim.clock()),
             (None, Some(replay)) => Some(&replay.clock),
-            _ => None,
+            _ => self.pending.as_ref(),
         }
     }
 
@@ -176,19 +182,18 @@ impl JellyfishSlice {
         self.clock().map_or(0.0, |c| c.added() - c.step())
     }
 
-    /// Starts the slice at `pose`, near; its clock's start (the phase offset) picks the
-    /// frames it steps on.
+    /// Starts it on `clock` (its phase offset, which also picks the frames it steps on),
+    /// near unless the levels of detail move it before its first step; nothing is built
+    /// yet ([`Self::pending`]).
     pub(crate) fn start(
         &mut self,
         history: &mut SliceHistory,
-        sim: SliceSim,
+        clock: FixedClock,
         species: Arc<Species>,
         seed: u32,
-        pose: Pose,
     ) {
-        history.restart(&sim, pose);
-        self.rest_bell = sim.view().rest_bell.to_vec();
-        self.sim = Some(sim);
+        self.pending = Some(clock);
+        self.sim = None;
         self.replay = None;
         self.tier = Tier::Near;
         self.anchor = None;
@@ -196,6 +201,25 @@ impl JellyfishSlice {
         self.seed = seed;
         self.fresh = true;
         self.show(history);
+    }
+
+    /// Builds the live slice of a jellyfish started this frame and still waiting (near),
+    /// at rest on its clock, its history starting there at `pose`.
+    pub(crate) fn build_pending(
+        &mut self,
+        history: &mut SliceHistory,
+        pose: Pose,
+    ) -> Result<(), SpeciesError> {
+        let Some(clock) = self.pending.take() else {
+            return Ok(());
+        };
+        let mut sim = SliceSim::new(&self.species)?;
+        sim.set_clock(clock);
+        history.restart(&sim, pose);
+        self.rest_bell = sim.view().rest_bell.to_vec();
+        self.sim = Some(sim);
+        self.show(history);
+        Ok(())
     }
 
     /// Tells the history which time the frame shows, and keeps what its newest step says.

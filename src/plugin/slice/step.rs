@@ -50,6 +50,10 @@ pub(super) fn step_slices(
     jellyfish.par_iter_mut().for_each(
         |(entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting)| {
             let slice = &mut *slice;
+            // Started this frame and left near: its slice is built now.
+            if let Err(error) = slice.build_pending(&mut history, motion.pose) {
+                error!("jellyfish {entity}: its slice could not be built: {error}");
+            }
             let Some(clock) = slice.clock() else {
                 return;
             };
