@@ -112,7 +112,9 @@ pub(super) fn fill_schools(
                 |p, spacing| {
                     !grid.any_around(p, spacing * (radius + widest), |i| {
                         let (q, rq) = kept[i];
-                        !(p.distance(q) >= spacing * (radius + rq))
+                        // Too near, or not comparable (a non-finite place is never clear).
+                        let (d, apart) = (p.distance(q), spacing * (radius + rq));
+                        d < apart || d.is_nan() || apart.is_nan()
                     })
                 },
             );
