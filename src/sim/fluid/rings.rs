@@ -111,8 +111,8 @@ impl Fluid {
         let (n, c) = (self.n, rings.solved - 1);
         let inverse_h = 1.0 / self.h;
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
-        // The divergence row by row (`across`: row j, ring k at c − k), then turned so
-        // that each ring's cells along the axis are contiguous for the transform.
+        // The divergence row by row (`across`: row j, ring k at c − k); the solve reads
+        // and writes each ring's column of it along the axis.
         let across = &mut rings.across;
         for (j, row) in across.chunks_exact_mut(c + 1).enumerate() {
             let u = &self.u[j * (n + 1)..][..c + 2];
@@ -122,9 +122,7 @@ impl Fluid {
                 *d = (radial + (v1[i] - v0[i])) * inverse_h;
             }
         }
-        transpose(across, &mut self.phi, n, c + 1);
-        rings.solver.solve_reversed(&mut self.phi);
-        transpose(&self.phi, across, c + 1, n);
+        rings.solver.solve_across(across, &mut self.phi);
         for j in 0..n {
             let phi = &across[j * (c + 1)..][..c + 1];
             let u = &mut self.u[j * (n + 1)..][..c + 1];
@@ -156,7 +154,8 @@ impl Fluid {
     pub(super) fn ring_viscosity_sweep(&mut self, rings: &mut Rings, a: f32) {
         let (n, c) = (self.n, rings.solved - 1);
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
-        // Each loop without a branch or a carried value, so that it vectorises.
+        // Each loop over slices of one length, without a branch, an index check or a
+        // carried value, so that it vectorises (each face's arithmetic as written).
         let flux = &mut rings.flux[..c + 1];
         for j in 0..n {
             let (jm, jp) = (j.saturating_sub(1), (j + 1).min(n - 1));
@@ -165,13 +164,19 @@ impl Fluid {
             let above = &self.u[jp * (n + 1)..][..c + 2];
             let out = &mut self.scratch_u[j * (n + 1)..][..c + 2];
             // (1/r)·∂(r u)/∂r of each cell, times h.
-            for (i, f) in flux.iter_mut().enumerate() {
-                *f = (r[i + 1] * here[i + 1] - r[i] * here[i]) * inverse[i];
+            let (outer, inner) = (r[1..].iter().zip(&here[1..]), r.iter().zip(here));
+            for ((f, ((ro, uo), (ri, ui))), inv) in
+                flux.iter_mut().zip(outer.zip(inner)).zip(inverse)
+            {
+                *f = (ro * uo - ri * ui) * inv;
             }
             out[0] = here[0];
-            for i in 1..=c {
-                let axial = below[i] + above[i] - 2.0 * here[i];
-                out[i] = here[i] + a * (flux[i] - flux[i - 1] + axial);
+            let faces = (&below[1..=c], &here[1..=c], &above[1..=c]);
+            let fluxes = flux[1..].iter().zip(&flux[..c]);
+            let rows = faces.0.iter().zip(faces.1).zip(faces.2);
+            for ((o, ((b, h), t)), (f1, f0)) in out[1..=c].iter_mut().zip(rows).zip(fluxes) {
+                let axial = b + t - 2.0 * h;
+                *o = h + a * (f1 - f0 + axial);
             }
             out[c + 1] = -out[c];
         }
@@ -181,21 +186,25 @@ impl Fluid {
             let here = &self.v[j * n..][..c + 2];
             let above = &self.v[jp * n..][..c + 2];
             let out = &mut self.scratch_v[j * n..][..c + 2];
-            let update = |i: usize, inner: f32| {
-                let radial = (r[i + 1] * (here[i + 1] - here[i]) - r[i] * inner) * inverse[i];
-                let axial = below[i] + above[i] - 2.0 * here[i];
-                here[i] + a * (radial + axial)
+            // The outer wall's face: free slip (no flux through it), or no slip in a pipe.
+            let wall = if rings.no_slip_wall {
+                2.0 * here[0]
+            } else {
+                0.0
             };
-            out[0] = update(
-                0,
-                if rings.no_slip_wall {
-                    2.0 * here[0]
-                } else {
-                    0.0
-                },
-            );
-            for i in 1..=c {
-                out[i] = update(i, here[i] - here[i - 1]);
+            let radial = (r[1] * (here[1] - here[0]) - r[0] * wall) * inverse[0];
+            let axial = below[0] + above[0] - 2.0 * here[0];
+            out[0] = here[0] + a * (radial + axial);
+            // Faces 1..=c: each with its neighbours out (i + 1) and in (i − 1).
+            let radii = r[2..=c + 1].iter().zip(&r[1..=c]).zip(&inverse[1..=c]);
+            let across = here[2..=c + 1].iter().zip(&here[1..=c]).zip(&here[..c]);
+            let along = below[1..=c].iter().zip(&above[1..=c]);
+            for ((o, ((ro, ri), inv)), (((ho, h), hi), (b, t))) in
+                out[1..=c].iter_mut().zip(radii).zip(across.zip(along))
+            {
+                let radial = (ro * (ho - h) - ri * (h - hi)) * inv;
+                let axial = b + t - 2.0 * h;
+                *o = h + a * (radial + axial);
             }
             out[c + 1] = out[c - 1];
         }
@@ -211,21 +220,5 @@ impl Fluid {
             .flat_map(|j| (0..rings.solved).map(move |i| (i, j)))
             .map(|(i, j)| self.ring_divergence(rings, i, j).abs())
             .fold(0.0, f32::max)
-    }
-}
-
-/// `to[col][row] = from[row][col]` for `rows × cols` row-major `from`, in tiles that stay
-/// in cache.
-fn transpose(from: &[f32], to: &mut [f32], rows: usize, cols: usize) {
-    const TILE: usize = 8;
-    for r0 in (0..rows).step_by(TILE) {
-        for c0 in (0..cols).step_by(TILE) {
-            for r in r0..(r0 + TILE).min(rows) {
-                let source = &from[r * cols..][..cols];
-                for c in c0..(c0 + TILE).min(cols) {
-                    to[c * rows + r] = source[c];
-                }
-            }
-        }
     }
 }

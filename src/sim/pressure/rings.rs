@@ -70,31 +70,61 @@ impl Along {
             },
             Along::Odd(dst) => Scratch {
                 complex: Vec::new(),
-                real: vec![0.0; dst.get_scratch_len()],
+                // The row, then the transform's own work space.
+                real: vec![0.0; dst.len() + dst.get_scratch_len()],
             },
         }
     }
 
     /// `row[k] ← Σ_j row[j]·sin(π(j + ½)(k + ½)/n)`.
+    #[cfg(test)]
     fn transform(&self, row: &mut [f32], scratch: &mut Scratch) {
+        let n = row.len();
+        self.load(n, scratch, |j| row[j]);
+        self.store(n, scratch, |j, x| row[j] = x);
+    }
+
+    /// The first half of [`Self::transform`] of the `n` values `read` gives: they are
+    /// read, all of them, before [`Self::store`] writes any, so the two may be different
+    /// layouts (a column of one field in, a row of another out) with no copy between.
+    fn load(&self, n: usize, scratch: &mut Scratch, read: impl Fn(usize) -> f32) {
         match self {
-            Along::Even { fft, before, after } => {
+            Along::Even { fft, before, .. } => {
                 // The DCT-IV of the row reversed, through one FFT of n/2 (the even and
                 // odd samples as the real and imaginary parts), its odd outputs negated:
                 // the DST-IV.
-                let (n, half) = (row.len(), before.len());
+                let half = before.len();
                 let (buffer, scratch) = scratch.complex.split_at_mut(half);
                 for (j, (b, w)) in buffer.iter_mut().zip(before.iter()).enumerate() {
-                    *b = Complex::new(row[n - 1 - 2 * j], row[2 * j]) * w;
+                    *b = Complex::new(read(n - 1 - 2 * j), read(2 * j)) * w;
                 }
                 fft.process_with_scratch(buffer, scratch);
-                for (j, (b, w)) in buffer.iter().zip(after.iter()).enumerate() {
+            }
+            Along::Odd(dst) => {
+                let (row, work) = scratch.real.split_at_mut(n);
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x = read(j);
+                }
+                dst.process_dst4_with_scratch(row, work);
+            }
+        }
+    }
+
+    /// The second half of [`Self::transform`]: `write(k, value)` for each of the `n`.
+    fn store(&self, n: usize, scratch: &Scratch, mut write: impl FnMut(usize, f32)) {
+        match self {
+            Along::Even { after, .. } => {
+                for (j, (b, w)) in scratch.complex.iter().zip(after.iter()).enumerate() {
                     let u = b * w;
-                    row[2 * j] = u.re;
-                    row[n - 1 - 2 * j] = u.im;
+                    write(2 * j, u.re);
+                    write(n - 1 - 2 * j, u.im);
                 }
             }
-            Along::Odd(dst) => dst.process_dst4_with_scratch(row, &mut scratch.real),
+            Along::Odd(_) => {
+                for (j, x) in scratch.real[..n].iter().enumerate() {
+                    write(j, *x);
+                }
+            }
         }
     }
 }
@@ -201,6 +231,7 @@ impl RingPoissonSolver {
 
     /// [`Self::solve`] with the rings' rows in the fluid's order: the outer wall first, the
     /// axis last.
+    #[cfg(test)]
     pub(crate) fn solve_reversed(&mut self, field: &mut [f32]) {
         let n = self.n;
         debug_assert_eq!(field.len(), self.modes.len());
@@ -214,6 +245,29 @@ impl RingPoissonSolver {
         }
         for row in field.chunks_exact_mut(n) {
             self.along.transform(row, &mut self.scratch);
+        }
+    }
+
+    /// [`Self::solve_reversed`] of a field held the other way round, as the projection
+    /// builds it: `across` has one row per cell along the axis, each a value per ring in
+    /// the fluid's order (the outer wall first). Each ring's column is transformed
+    /// straight into its row of `work` (`rings × n`) and back, so the field is never
+    /// turned: the same arithmetic, the same bits.
+    pub(crate) fn solve_across(&mut self, across: &mut [f32], work: &mut [f32]) {
+        let n = self.n;
+        let rings = across.len() / n;
+        debug_assert_eq!(work.len(), self.modes.len());
+        for (k, row) in work.chunks_exact_mut(n).enumerate() {
+            self.along
+                .load(n, &mut self.scratch, |j| across[j * rings + k]);
+            self.along.store(n, &self.scratch, |j, x| row[j] = x);
+        }
+        // DST-IV is its own inverse up to n/2: undone on the way in.
+        self.factors.solve(work, 2.0 / n as f64, &mut self.modes);
+        for (k, modes) in self.modes.chunks_exact(n).enumerate() {
+            self.along.load(n, &mut self.scratch, |j| modes[j] as f32);
+            self.along
+                .store(n, &self.scratch, |j, x| across[j * rings + k] = x);
         }
     }
 }
@@ -264,6 +318,39 @@ mod tests {
                 .zip(&reference)
                 .fold(0.0f32, |m, (a, b)| m.max((a - b).abs()));
             assert!(err < 1e-5 * scale, "n = {n}: {err} of {scale}");
+        }
+    }
+
+    /// The projection's solve of a field held along the axis is the solve of the same
+    /// field turned, bit for bit (even lengths through the half-length FFT, odd through
+    /// rustdct's).
+    #[test]
+    fn solving_across_is_solving_the_field_turned() {
+        for (rings, n) in [(9, 16), (31, 60), (32, 63)] {
+            let rhs: Vec<f32> = (0..rings * n)
+                .map(|q| ((q * 7919 % 211) as f32 / 211.0 - 0.5) * 3.0)
+                .collect();
+            // `rows`: ring-major, as `solve_reversed` takes it; `across`: axis-major.
+            let mut rows = rhs.clone();
+            let mut across = vec![0.0; rings * n];
+            for k in 0..rings {
+                for j in 0..n {
+                    across[j * rings + k] = rhs[k * n + j];
+                }
+            }
+            let mut solver = RingPoissonSolver::new(rings, n, 0.003);
+            solver.solve_reversed(&mut rows);
+            let mut work = vec![0.0; rings * n];
+            solver.solve_across(&mut across, &mut work);
+            for k in 0..rings {
+                for j in 0..n {
+                    assert_eq!(
+                        across[j * rings + k].to_bits(),
+                        rows[k * n + j].to_bits(),
+                        "{rings}×{n}: ring {k}, cell {j}"
+                    );
+                }
+            }
         }
     }
 
