@@ -75,8 +75,8 @@ pub struct DetailLevels {
     pub promotions_per_frame: usize,
     /// Steps a frame of each cycle recorded after an edit (a species' far cycle and its
     /// compact variant, side by side): more records sooner, fewer keeps the frames as
-    /// short as they were. A count, not a time, so the new cycle arrives on the same frame
-    /// in every run.
+    /// short as they were (at least one is taken). A count, not a time, so the new cycle
+    /// arrives on the same frame in every run.
     pub recording_steps_per_frame: u32,
 }
 

@@ -47,12 +47,14 @@ impl CycleCaches {
         None
     }
 
-    /// Takes `steps` more steps of every recording, side by side, and keeps the cycles
-    /// that are done.
+    /// Takes `steps` more steps (at least one) of every recording, side by side, and keeps
+    /// the cycles that are done: a budget of none would hold far jellyfish on the old
+    /// cycle, and the tier changes of the edited species, for ever.
     pub fn collect(&mut self, steps: u32) {
         if self.recording.is_empty() {
             return;
         }
+        let steps = steps.max(1);
         let done = ComputeTaskPool::get().scope(|scope| {
             for recorder in &mut self.recording {
                 scope.spawn(async move { recorder.advance(steps) });

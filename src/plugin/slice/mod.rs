@@ -97,7 +97,8 @@ pub struct JellyfishSlice {
 
 impl JellyfishSlice {
     /// The live slice, once its species has loaded and while it is near or mid (for debug
-    /// overlays and tools); `None` while it replays its species' cycle (far).
+    /// overlays and tools; built when the slices first step it); `None` while it replays
+    /// its species' cycle (far).
     pub fn sim(&self) -> Option<&SliceSim> {
         self.sim.as_ref()
     }
