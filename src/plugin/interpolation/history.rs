@@ -39,9 +39,14 @@ impl SliceHistory {
 
     /// Forgets the past: the slice's present state only (a new or rebuilt slice).
     pub fn restart(&mut self, sim: &SliceSim, pose: Pose) {
+        self.begin(sim.clock(), pose, |s| s.capture(sim));
+    }
+
+    /// Forgets the past, fade included, and records one state (`fill` writes it).
+    fn begin(&mut self, clock: &FixedClock, pose: Pose, fill: impl FnOnce(&mut Snapshot)) {
         self.spare.extend(self.states.drain(..));
         self.carry = None;
-        self.record(sim.clock(), 0.0, pose, |s| s.capture(sim));
+        self.record(clock, 0.0, pose, fill);
     }
 
     /// Records the state after a step (`fill` writes the shape, time and swim distance)
@@ -96,9 +101,7 @@ impl SliceHistory {
     /// Starts over at `now`, the new tier's present shape, at `pose`, with nothing to
     /// fade: a jellyfish that changes tier before any frame has shown it.
     pub fn restart_at(&mut self, clock: &FixedClock, now: &Snapshot, pose: Pose) {
-        self.spare.extend(self.states.drain(..));
-        self.carry = None;
-        self.record(clock, 0.0, pose, |s| s.clone_from(now));
+        self.begin(clock, pose, |s| s.clone_from(now));
     }
 
     /// The newest recorded step: none before the jellyfish starts.
