@@ -48,19 +48,28 @@ impl BandedSpd {
         let w = b + 1;
         for i in 0..n {
             let first = i.saturating_sub(b);
+            let (done, rest) = self.lower.split_at_mut(i * w);
+            let row_i = &mut rest[..w];
             for j in first..=i {
-                let mut sum = self.lower[i * w + (i - j)];
+                // Σ over k in start..j of L[i][k]·L[j][k], k ascending: both rows are
+                // stored from the diagonal down, so their entries run backwards.
                 let start = first.max(j.saturating_sub(b));
-                for k in start..j {
-                    sum -= self.lower[i * w + (i - k)] * self.lower[j * w + (j - k)];
-                }
+                let mut sum = row_i[i - j];
                 if i == j {
+                    for &l in row_i[1..=i - start].iter().rev() {
+                        sum -= l * l;
+                    }
                     if sum <= 0.0 || !sum.is_finite() {
                         return false;
                     }
-                    self.lower[i * w] = sum.sqrt();
+                    row_i[0] = sum.sqrt();
                 } else {
-                    self.lower[i * w + (i - j)] = sum / self.lower[j * w];
+                    let row_j = &done[j * w..][..w];
+                    let ik = row_i[i - j + 1..=i - start].iter().rev();
+                    for (l_ik, l_jk) in ik.zip(row_j[1..=j - start].iter().rev()) {
+                        sum -= l_ik * l_jk;
+                    }
+                    row_i[i - j] = sum / row_j[0];
                 }
             }
         }

@@ -22,7 +22,9 @@ const MAX_TAPS: usize = 13;
 /// Weights along one axis: faces `index[..len]` with weights `weight[..len]`.
 #[derive(Clone, Copy, Debug)]
 struct Taps {
-    index: [usize; MAX_TAPS],
+    /// Face indices: `u32`, so that a stencil (copied once per point and step) is a
+    /// third smaller.
+    index: [u32; MAX_TAPS],
     weight: [f32; MAX_TAPS],
     len: usize,
 }
@@ -44,8 +46,8 @@ impl Stencil {
         (0..y.len).flat_map(move |b| {
             (0..x.len).map(move |a| {
                 (
-                    y.index[b] * row + x.index[a],
-                    x.index[a],
+                    y.index[b] as usize * row + x.index[a] as usize,
+                    x.index[a] as usize,
                     x.weight[a] * y.weight[b],
                 )
             })
@@ -56,7 +58,10 @@ impl Stencil {
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
         let (x, y, row) = (&self.x, &self.y, self.row);
         (0..y.len).flat_map(move |b| {
-            (0..x.len).map(move |a| (y.index[b] * row + x.index[a], x.weight[a] * y.weight[b]))
+            (0..x.len).map(move |a| {
+                let face = y.index[b] as usize * row + x.index[a] as usize;
+                (face, x.weight[a] * y.weight[b])
+            })
         })
     }
 }
@@ -83,7 +88,7 @@ fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
     } else {
         0.0
     };
-    let clamp = |i: f32| i.clamp(0.0, last) as usize;
+    let clamp = |i: f32| i.clamp(0.0, last) as u32;
     let mut t = Taps {
         index: [0; MAX_TAPS],
         weight: [0.0; MAX_TAPS],

@@ -37,6 +37,13 @@ pub(super) fn cubic_sample4(
     x: [f32; 4],
     y: [f32; 4],
 ) -> [f32; 4] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: SSE2 is in every x86-64 target's baseline, so it is always enabled.
+        if let Some(inside) = unsafe { sse2::cubic_sample4(field, nx, ny, x, y) } {
+            return inside;
+        }
+    }
     let (mut fx, mut fy) = ([0.0; 4], [0.0; 4]);
     // values[row][column][lane]
     let mut values = [[[0.0f32; 4]; 4]; 4];
@@ -151,6 +158,92 @@ mod sse2 {
         let a = _mm_add_ps(a0, _mm_mul_ps(fx, _mm_sub_ps(a1, a0)));
         let b = _mm_add_ps(b0, _mm_mul_ps(fx, _mm_sub_ps(b1, b0)));
         lanes(_mm_add_ps(a, _mm_mul_ps(fy, _mm_sub_ps(b, a))))
+    }
+
+    /// See [`super::cubic_sample4`]; `None` unless all four points are a cell inside the
+    /// field. Each lane's four rows of four load as vectors and transpose in registers
+    /// (gathered one value at a time through memory, each vector stalled on its four
+    /// stores); the arithmetic is the scalar one's, lane by lane.
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    pub(super) fn cubic_sample4(
+        field: &[f32],
+        nx: usize,
+        ny: usize,
+        x: [f32; 4],
+        y: [f32; 4],
+    ) -> Option<[f32; 4]> {
+        let located = locate4(nx, ny, x, y);
+        let inside =
+            |&(i, j, _, _): &(usize, usize, f32, f32)| i >= 1 && i + 2 < nx && j >= 1 && j + 2 < ny;
+        if !located.iter().all(inside) {
+            return None;
+        }
+        // Each lane's sixteen values: four runs of four, one bounds check.
+        let blocks = located.map(|(i, j, _, _)| &field[(j - 1) * nx + i - 1..][..3 * nx + 4]);
+        let row = |lane: usize, b: usize| {
+            let r = &blocks[lane][b * nx..][..4];
+            // SAFETY: `r` holds the four values read.
+            unsafe { _mm_loadu_ps(r.as_ptr()) }
+        };
+        let wx = catmull_rom(vector(located.map(|l| l.2)));
+        let wy = catmull_rom(vector(located.map(|l| l.3)));
+        let mut value = _mm_setzero_ps();
+        // middle[row][column][lane]: the four nearest values, for the limiter.
+        let mut middle = [[[0.0f32; 4]; 2]; 2];
+        for (b, w) in wy.into_iter().enumerate() {
+            let [c0, c1, c2, c3] = transpose([row(0, b), row(1, b), row(2, b), row(3, b)]);
+            let sum = _mm_add_ps(_mm_mul_ps(wx[0], c0), _mm_mul_ps(wx[1], c1));
+            let sum = _mm_add_ps(sum, _mm_mul_ps(wx[2], c2));
+            let sum = _mm_add_ps(sum, _mm_mul_ps(wx[3], c3));
+            value = _mm_add_ps(value, _mm_mul_ps(w, sum));
+            if b == 1 || b == 2 {
+                middle[b - 1] = [lanes(c1), lanes(c2)];
+            }
+        }
+        let value = lanes(value);
+        let [[below_0, below_1], [above_0, above_1]] = middle;
+        Some(std::array::from_fn(|lane| {
+            let (a0, a1) = (below_0[lane], below_1[lane]);
+            let (b0, b1) = (above_0[lane], above_1[lane]);
+            let lo = a0.min(a1).min(b0).min(b1);
+            let hi = a0.max(a1).max(b0).max(b1);
+            value[lane].max(lo).min(hi)
+        }))
+    }
+
+    /// `super::catmull_rom` of four fractions: each weight's operations in its order.
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    fn catmull_rom(t: __m128) -> [__m128; 4] {
+        let k = _mm_set1_ps;
+        let (t2, t3) = (_mm_mul_ps(t, t), _mm_mul_ps(_mm_mul_ps(t, t), t));
+        // −a + b is b − a, and (−3)·a is −(3·a), bit for bit.
+        let w0 = _mm_sub_ps(_mm_sub_ps(_mm_mul_ps(k(2.0), t2), t3), t);
+        let w1 = _mm_add_ps(
+            _mm_sub_ps(_mm_mul_ps(k(3.0), t3), _mm_mul_ps(k(5.0), t2)),
+            k(2.0),
+        );
+        let w2 = _mm_add_ps(
+            _mm_sub_ps(_mm_mul_ps(k(4.0), t2), _mm_mul_ps(k(3.0), t3)),
+            t,
+        );
+        let w3 = _mm_sub_ps(t3, t2);
+        [w0, w1, w2, w3].map(|w| _mm_mul_ps(k(0.5), w))
+    }
+
+    /// Rows to columns: `[lane][column]` to `[column][lane]`.
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    fn transpose([r0, r1, r2, r3]: [__m128; 4]) -> [__m128; 4] {
+        let (t0, t1) = (_mm_unpacklo_ps(r0, r1), _mm_unpacklo_ps(r2, r3));
+        let (t2, t3) = (_mm_unpackhi_ps(r0, r1), _mm_unpackhi_ps(r2, r3));
+        [
+            _mm_movelh_ps(t0, t1),
+            _mm_movehl_ps(t1, t0),
+            _mm_movelh_ps(t2, t3),
+            _mm_movehl_ps(t3, t2),
+        ]
     }
 
     /// See [`super::locate4`].
