@@ -117,17 +117,24 @@ impl Fluid {
         for (j, row) in across.chunks_exact_mut(c + 1).enumerate() {
             let u = &self.u[j * (n + 1)..][..c + 2];
             let (v0, v1) = (&self.v[j * n..][..c + 1], &self.v[(j + 1) * n..][..c + 1]);
-            for (i, d) in row.iter_mut().enumerate() {
-                let radial = (r[i + 1] * u[i + 1] - r[i] * u[i]) * inverse[i];
-                *d = (radial + (v1[i] - v0[i])) * inverse_h;
+            // Zipped slices of one length, so that it vectorises (each cell as written).
+            let (outer, inner) = (r[1..].iter().zip(&u[1..]), r.iter().zip(u));
+            let axial = v1.iter().zip(v0);
+            for ((d, ((ro, uo), (ri, ui))), (inv, (v1, v0))) in row
+                .iter_mut()
+                .zip(outer.zip(inner))
+                .zip(inverse.iter().zip(axial))
+            {
+                let radial = (ro * uo - ri * ui) * inv;
+                *d = (radial + (v1 - v0)) * inverse_h;
             }
         }
         rings.solver.solve_across(across, &mut self.phi);
         for j in 0..n {
             let phi = &across[j * (c + 1)..][..c + 1];
             let u = &mut self.u[j * (n + 1)..][..c + 1];
-            for i in 1..=c {
-                u[i] -= (phi[i] - phi[i - 1]) * inverse_h;
+            for (u, (p1, p0)) in u[1..].iter_mut().zip(phi[1..].iter().zip(&phi[..c])) {
+                *u -= (p1 - p0) * inverse_h;
             }
             let v = &mut self.v[j * n..][..c + 1];
             if j == 0 {
