@@ -4,9 +4,10 @@
 //! strokes.
 //!
 //! A member decides its heading every [`STEER_EVERY`] ticks, the school's members in turn
-//! by their number: at Bevy's 64 Hz fixed rate that is 16 times a second, far more often
-//! than the second a stroke takes, and a tick pays for a quarter of a crowded tank's
-//! neighbours (at 1002 jellyfish, about 60 within reach of each).
+//! by their number: at Bevy's 64 Hz fixed rate that is 4 times a second, still several
+//! decisions a stroke (a jellyfish turns only while it strokes, about once a second),
+//! and a tick pays for a sixteenth of a crowded tank's neighbours. At 16 times a second,
+//! finding them took a fifth of the CPU of 10,002 jellyfish (`docs/benchmarks.md`).
 
 use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, Swimmer};
@@ -24,7 +25,7 @@ const PUSH: f32 = 3.0;
 /// and a member of an overfull box does not pay for the hundreds within its reach.
 const NEAREST: usize = 7;
 /// A member decides its heading in one fixed tick of this many.
-pub(super) const STEER_EVERY: u32 = 4;
+pub(super) const STEER_EVERY: u32 = 16;
 
 /// Sets every member's heading.
 pub(super) fn steer_schools(
@@ -45,39 +46,43 @@ pub(super) fn steer_schools(
     all.sort_by(super::by_position);
     let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
     let grid = Neighbours::of(&all, cube(&all, NEIGHBOUR_REACH * widest));
-    let mut nearest: Vec<(f32, usize)> = Vec::new();
-    for (of, swimmer, motion, mut steering) in &mut members {
-        if swimmer.number % STEER_EVERY != turn {
-            continue;
-        }
-        let Ok((school, frame)) = schools.get(of.0) else {
-            continue;
-        };
-        let p = motion.pose.position;
-        let w = swimmer.wander;
-        let wander = frame.rotation
-            * Vec3::new(
-                0.6 * (0.11 * t + w.x).sin(),
-                1.0 + 0.5 * (0.07 * t + w.y).sin(),
-                0.6 * (0.09 * t + w.z).cos(),
-            );
-        let mut push = walls(p, school, frame, swimmer.radius);
-        // The nearest within reach, summed in the order of `all`: the same sum, to the
-        // bit, as a pass over everyone sorted by distance.
-        let range = NEIGHBOUR_REACH * (swimmer.radius + widest);
-        let within = |i: usize| {
-            let (q, rq) = all[i];
-            let d = p.distance(q);
-            (d > 1e-6 && d < NEIGHBOUR_REACH * (swimmer.radius + rq)).then_some(d)
-        };
-        grid.nearest(p, range, NEAREST, within, &mut nearest);
-        nearest.sort_unstable_by_key(|&(_, i)| i);
-        for &(_, i) in &nearest {
-            push += pushes(p, swimmer.radius, all[i]).unwrap_or_default();
-        }
-        let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
-        steering.target = SteeringTarget::Heading(desired);
-    }
+    // Each member's heading reads only `all` and the grid, so the members decide side by
+    // side: the same headings, however many threads share them.
+    members.par_iter_mut().for_each_init(
+        Vec::new,
+        |nearest, (of, swimmer, motion, mut steering)| {
+            if swimmer.number % STEER_EVERY != turn {
+                return;
+            }
+            let Ok((school, frame)) = schools.get(of.0) else {
+                return;
+            };
+            let p = motion.pose.position;
+            let w = swimmer.wander;
+            let wander = frame.rotation
+                * Vec3::new(
+                    0.6 * (0.11 * t + w.x).sin(),
+                    1.0 + 0.5 * (0.07 * t + w.y).sin(),
+                    0.6 * (0.09 * t + w.z).cos(),
+                );
+            let mut push = walls(p, school, frame, swimmer.radius);
+            // The nearest within reach, summed in the order of `all`: the same sum, to the
+            // bit, as a pass over everyone sorted by distance.
+            let range = NEIGHBOUR_REACH * (swimmer.radius + widest);
+            let within = |i: usize| {
+                let (q, rq) = all[i];
+                let d = p.distance(q);
+                (d > 1e-6 && d < NEIGHBOUR_REACH * (swimmer.radius + rq)).then_some(d)
+            };
+            grid.nearest(p, range, NEAREST, within, nearest);
+            nearest.sort_unstable_by_key(|&(_, i)| i);
+            for &(_, i) in nearest.iter() {
+                push += pushes(p, swimmer.radius, all[i]).unwrap_or_default();
+            }
+            let desired = (wander.normalize_or(Vec3::Y) + PUSH * push).normalize_or(Vec3::Y);
+            steering.target = SteeringTarget::Heading(desired);
+        },
+    );
 }
 
 /// The grid's cube for `points` whose neighbours reach up to `range`: about eight members
