@@ -77,10 +77,10 @@ pub(super) fn cubic_sample4(
     }
     let (a, b) = (&values[1], &values[2]);
     std::array::from_fn(|lane| {
-        let (a0, a1, b0, b1) = (a[1][lane], a[2][lane], b[1][lane], b[2][lane]);
-        let lo = a0.min(a1).min(b0).min(b1);
-        let hi = a0.max(a1).max(b0).max(b1);
-        value[lane].max(lo).min(hi)
+        within(
+            value[lane],
+            [a[1][lane], a[2][lane], b[1][lane], b[2][lane]],
+        )
     })
 }
 
@@ -204,11 +204,8 @@ mod sse2 {
         let value = lanes(value);
         let [[below_0, below_1], [above_0, above_1]] = middle;
         Some(std::array::from_fn(|lane| {
-            let (a0, a1) = (below_0[lane], below_1[lane]);
-            let (b0, b1) = (above_0[lane], above_1[lane]);
-            let lo = a0.min(a1).min(b0).min(b1);
-            let hi = a0.max(a1).max(b0).max(b1);
-            value[lane].max(lo).min(hi)
+            let nearest = [below_0[lane], below_1[lane], above_0[lane], above_1[lane]];
+            super::within(value[lane], nearest)
         }))
     }
 
@@ -335,7 +332,12 @@ fn sixteen(field: &[f32], nx: usize, ny: usize, i: usize, j: usize) -> [[f32; 4]
 /// (`locate` keeps i + 1 and j + 1 inside the field, so none of them is clamped).
 #[inline(always)]
 fn limited(value: f32, rows: [[f32; 4]; 4]) -> f32 {
-    let (a0, a1, b0, b1) = (rows[1][1], rows[1][2], rows[2][1], rows[2][2]);
+    within(value, [rows[1][1], rows[1][2], rows[2][1], rows[2][2]])
+}
+
+/// `value` limited to the range of `nearest`, the four values around the point.
+#[inline(always)]
+fn within(value: f32, [a0, a1, b0, b1]: [f32; 4]) -> f32 {
     let lo = a0.min(a1).min(b0).min(b1);
     let hi = a0.max(a1).max(b0).max(b1);
     // max-then-min, not clamp: NaN must reach the health check, not panic.
