@@ -37,6 +37,12 @@ impl Resolution {
         Self::scaled(species, 1.0)
     }
 
+    /// The fringe's guides drawn for `species`, at any scale: its simulated guides, at
+    /// most 16.
+    pub fn guides_of(species: &Species) -> usize {
+        species.guide_count().min(16)
+    }
+
     /// The species' resolution with its rings and segments multiplied by `scale` (a
     /// drawing setting), clamped to what validation allows.
     pub fn scaled(species: &Species, scale: f32) -> Self {
@@ -69,7 +75,7 @@ impl Resolution {
                 sides: ORAL_SIDES,
                 points: rings + 1,
             },
-            guides: species.guide_count().min(16),
+            guides: Self::guides_of(species),
             oral_guides: species.oral_guide_count(),
         }
     }

@@ -13,6 +13,10 @@ use std::collections::VecDeque;
 #[derive(Component, Default)]
 pub(crate) struct SliceHistory {
     states: VecDeque<Snapshot>,
+    /// Each state's time, in the same order: a frame's bracket reads these few numbers,
+    /// not a cache line of every stored state (ten thousand far jellyfish's histories do
+    /// not fit in a cache).
+    times: VecDeque<f64>,
     /// The slice time the frame shows, s (see `JellyfishSlice::display_time`).
     shown: f64,
     /// Recycled snapshots, so a step allocates nothing.
@@ -45,6 +49,7 @@ impl SliceHistory {
     /// Forgets the past, fade included, and records one state (`fill` writes it).
     fn begin(&mut self, clock: &FixedClock, pose: Pose, fill: impl FnOnce(&mut Snapshot)) {
         self.spare.extend(self.states.drain(..));
+        self.times.clear();
         self.carry = None;
         self.record(clock, 0.0, pose, fill);
     }
@@ -70,9 +75,11 @@ impl SliceHistory {
                 self.carry = None;
             }
         }
+        self.times.push_back(snapshot.time);
         self.states.push_back(snapshot);
         while self.states.len() > Self::capacity(clock, frame) {
             if let Some(old) = self.states.pop_front() {
+                self.times.pop_front();
                 self.spare.push(old);
             }
         }
@@ -88,8 +95,9 @@ impl SliceHistory {
         let shift = time - newest.time;
         let mut shape = newest.clone();
         shape.add(now, -1.0);
-        for s in &mut self.states {
+        for (s, time) in self.states.iter_mut().zip(&mut self.times) {
             s.time += shift;
+            *time = s.time;
         }
         self.carry = Some(Carry {
             shape,
@@ -112,18 +120,26 @@ impl SliceHistory {
     /// The two states around time `t` and how far between them it is, in [0, 1]; held at
     /// the ends if `t` is outside the history.
     pub fn bracket(&self, t: f64) -> Option<(&Snapshot, &Snapshot, f32)> {
-        let first = self.states.front()?;
-        if t <= first.time {
-            return Some((first, first, 0.0));
+        if t <= *self.times.front()? {
+            let s = self.states.front()?;
+            return Some((s, s, 0.0));
         }
-        for (a, b) in self.states.iter().zip(self.states.iter().skip(1)) {
-            if t <= b.time {
-                let span = (b.time - a.time).max(1e-12);
-                return Some((a, b, ((t - a.time) / span) as f32));
+        // The first state at or after `t`, and the one before it.
+        match self.times.iter().position(|&time| t <= time) {
+            Some(i) => {
+                let (a, b) = (self.times[i - 1], self.times[i]);
+                let span = (b - a).max(1e-12);
+                Some((
+                    &self.states[i - 1],
+                    &self.states[i],
+                    ((t - a) / span) as f32,
+                ))
+            }
+            None => {
+                let s = self.states.back()?;
+                Some((s, s, 0.0))
             }
         }
-        let last = self.states.back()?;
-        Some((last, last, 0.0))
     }
 
     /// Sets the slice time the frame shows, s.

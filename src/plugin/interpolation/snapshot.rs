@@ -3,7 +3,7 @@
 
 use crate::plugin::swimming::Pose;
 use crate::sim::cycle::{CycleCache, Reach};
-use crate::sim::guides::Trail;
+use crate::sim::guides::{GUIDE_NODES, THIN_NODES, Trail};
 use crate::sim::{SliceSim, SliceView};
 use bevy::math::{Vec2, Vec3};
 use std::sync::Arc;
@@ -15,8 +15,12 @@ pub(crate) struct Snapshot {
     /// The shape's own points; not read while it is a `recorded` step, whose points are
     /// the cycle's (kept for the next shape of its own, so a step allocates nothing).
     own: Points,
-    /// The fringe's guide offsets after the step (`TentacleGuides`), body frame.
+    /// The fringe's guide offsets after the step (`TentacleGuides`), body frame: every
+    /// node, or as a far jellyfish draws them where `thin_trail` says so.
     pub trail: Vec<Vec3>,
+    /// Whether `trail` is thinned (`Trail::thin_into`): a far jellyfish's step keeps only
+    /// what it draws, a fifth of the trail, and its frames need not thin it again.
+    pub thin_trail: bool,
     /// The oral tubes' guide offsets after the step, body frame.
     pub oral_trail: Vec<Vec3>,
     pub swim: f32,
@@ -123,17 +127,20 @@ impl Snapshot {
         };
         let (sa, sb, own) = (a.shape(), b.shape(), &mut self.own);
         lerp(&mut own.bell, sa.bell, sb.bell);
-        let lerp3 = |out: &mut Vec<Vec3>, a: &[Vec3], b: &[Vec3]| {
+        let lerp3 = |out: &mut Vec<Vec3>, a: &[Vec3], b: &[Vec3], alike: bool| {
             out.clear();
             // (A far jellyfish's trail changes every few steps only.)
-            if a.len() == b.len() && a != b {
+            if alike && a.len() == b.len() && a != b {
                 out.extend(a.iter().zip(b).map(|(a, b)| a.lerp(*b, t)));
             } else {
                 out.extend_from_slice(b);
             }
         };
-        lerp3(&mut self.trail, &a.trail, &b.trail);
-        lerp3(&mut self.oral_trail, &a.oral_trail, &b.oral_trail);
+        // A whole trail and a thinned one (at a change of tier) are not alike.
+        let alike = a.thin_trail == b.thin_trail;
+        lerp3(&mut self.trail, &a.trail, &b.trail, alike);
+        self.thin_trail = b.thin_trail;
+        lerp3(&mut self.oral_trail, &a.oral_trail, &b.oral_trail, true);
         for side in 0..2 {
             lerp(
                 &mut own.tentacles[side],
@@ -165,8 +172,30 @@ impl Snapshot {
     pub fn set_trail(&mut self, fringe: &[Vec3], oral: &[Vec3]) {
         self.trail.clear();
         self.trail.extend_from_slice(fringe);
+        self.thin_trail = false;
         self.oral_trail.clear();
         self.oral_trail.extend_from_slice(oral);
+    }
+
+    /// As [`Self::set_trail`], the fringe's trail thinned to `guides` guides as a far
+    /// jellyfish draws it.
+    pub fn set_thin_trail(&mut self, fringe: &[Vec3], oral: &[Vec3], guides: usize) {
+        Trail::new(fringe).thin_into(guides, &mut self.trail);
+        self.thin_trail = true;
+        self.oral_trail.clear();
+        self.oral_trail.extend_from_slice(oral);
+    }
+
+    /// The fringe's trail as stored.
+    pub fn fringe_trail(&self) -> Trail<'_> {
+        Trail {
+            offsets: &self.trail,
+            nodes: if self.thin_trail {
+                THIN_NODES
+            } else {
+                GUIDE_NODES
+            },
+        }
     }
 
     /// `self += weight · other`, point by point, where the shapes match. A recorded step
@@ -206,7 +235,7 @@ impl Snapshot {
             rest_bell,
             tentacles: shape.tentacles,
             oral_arms: shape.oral_arms,
-            trail: Trail::new(&self.trail),
+            trail: self.fringe_trail(),
             oral_trail: Trail::new(&self.oral_trail),
         }
     }

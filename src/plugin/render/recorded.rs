@@ -121,8 +121,11 @@ pub(crate) fn drawn_view<'a>(
     thin: &'a mut Vec<Vec3>,
 ) -> SliceView<'a> {
     let mut view = shown.view(rest_bell);
-    if far && shown.recorded.is_some() {
-        view.trail = view.trail.thin_into(packed::far_guides(res), thin);
+    let guides = packed::far_guides(res);
+    // A far step keeps its trail thinned already (`Snapshot::set_thin_trail`).
+    let thinned = shown.thin_trail && view.trail.guides() == guides;
+    if far && shown.recorded.is_some() && !thinned {
+        view.trail = view.trail.thin_into(guides, thin);
     }
     view
 }

@@ -15,6 +15,7 @@ use crate::plugin::swimming::{
 };
 use crate::plugin::timings::JellyfishTimings;
 use crate::plugin::water::AmbientWater;
+use crate::shape::packed;
 use crate::sim::clock::FixedClock;
 use bevy::prelude::*;
 use std::time::Instant;
@@ -190,8 +191,9 @@ impl Step<'_> {
                 let (time, swim) = (clock.time(), replay.swim as f32);
                 history.record(clock, frame, motion.pose, |s| {
                     s.copy_frame(&replay.cache, replay.index(), time, swim);
+                    // Only what it draws: its frames read the thinned trail in place.
                     let (fringe, oral) = trail.unwrap_or_default();
-                    s.set_trail(fringe, oral);
+                    s.set_thin_trail(fringe, oral, packed::far_guides_of(stroke.species));
                 });
                 if stroke_begins(clock, resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));

@@ -27,6 +27,11 @@ pub fn far_guides(res: &Resolution) -> usize {
     res.guides.min(FAR_GUIDES)
 }
 
+/// Guides of a far jellyfish's trail of `species`, at any resolution: [`far_guides`].
+pub fn far_guides_of(species: &Species) -> usize {
+    Resolution::guides_of(species).min(FAR_GUIDES)
+}
+
 /// Appends the frame of a recorded step for far jellyfish: the block of `view` without
 /// trails, saying that each instance carries its thinned fringe ([`far_guides`] of
 /// [`THIN_NODES`]) right after its own words. On error nothing is appended.
