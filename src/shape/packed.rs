@@ -236,6 +236,15 @@ fn write_trails(trails: [(Trail, usize); 2], out: &mut Vec<f32>) {
     }
 }
 
+/// Rounds each offset of a trail to the nearest half, as a packed shape carries it: a
+/// surface built from the rounded trail on the CPU is the one the templates draw, to the
+/// bit of their input, and packing it again loses nothing.
+pub fn round_to_halves(offsets: &mut [Vec3]) {
+    for v in offsets {
+        *v = v.to_array().map(|x| half::f16::from_f32(x).to_f32()).into();
+    }
+}
+
 /// Appends one guide's node offsets (its root's left out) as `trail_values` values of two
 /// halves each.
 fn write_halves(nodes: &[Vec3], out: &mut Vec<f32>) {

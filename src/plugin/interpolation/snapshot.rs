@@ -2,6 +2,7 @@
 //! distance swum, the time and the jellyfish's pose.
 
 use crate::plugin::swimming::Pose;
+use crate::shape::packed;
 use crate::sim::cycle::{CycleCache, Reach};
 use crate::sim::guides::{GUIDE_NODES, THIN_NODES, Trail};
 use crate::sim::{SliceSim, SliceView};
@@ -177,13 +178,14 @@ impl Snapshot {
         self.oral_trail.extend_from_slice(oral);
     }
 
-    /// As [`Self::set_trail`], the fringe's trail thinned to `guides` guides as a far
-    /// jellyfish draws it.
-    pub fn set_thin_trail(&mut self, fringe: &[Vec3], oral: &[Vec3], guides: usize) {
+    /// The fringe's trail thinned to `guides` guides and rounded to halves, as a far
+    /// jellyfish draws it (`render::recorded::drawn_view`); no oral trail, which a far
+    /// jellyfish does not draw.
+    pub fn set_thin_trail(&mut self, fringe: &[Vec3], guides: usize) {
         Trail::new(fringe).thin_into(guides, &mut self.trail);
+        packed::round_to_halves(&mut self.trail);
         self.thin_trail = true;
         self.oral_trail.clear();
-        self.oral_trail.extend_from_slice(oral);
     }
 
     /// The fringe's trail as stored.

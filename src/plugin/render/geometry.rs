@@ -6,7 +6,7 @@
 //! template path is tested against.
 
 use super::meshes::JellyfishMeshes;
-use super::recorded::{drawn_view, shown_step};
+use super::recorded::{DrawnTrails, drawn_view, shown_step};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::{JellyfishSlice, Tier};
@@ -72,8 +72,8 @@ impl JellyfishGeometry<'_, '_> {
         };
         let res = self.settings.resolution(&slice.species);
         let far = slice.tier() == Tier::Far;
-        let mut thin = Vec::new();
-        let view = drawn_view(shown, far, &slice.rest_bell, &res, &mut thin);
+        let mut trails = DrawnTrails::default();
+        let view = drawn_view(shown, far, &slice.rest_bell, &res, &mut trails);
         let mut mesh = JellyMesh::new();
         let time = shown.time as f32;
         build_at(&mut mesh, &view, &slice.species, res, slice.seed, time).ok()?;

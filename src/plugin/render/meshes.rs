@@ -1,7 +1,7 @@
 //! What a jellyfish is drawn with: its meshes (the umbrella on the jellyfish itself, the
 //! tentacles and the glow layer on children) and the path that builds them.
 
-use super::recorded::PackedCycle;
+use super::recorded::{DrawnTrails, PackedCycle};
 use crate::plugin::interpolation::Snapshot;
 use crate::shape::packed::ShapePacker;
 use crate::shape::{JellyMesh, Resolution};
@@ -50,9 +50,9 @@ pub struct JellyfishMeshes {
     pub(crate) shared: Option<(std::sync::Arc<PackedCycle>, u32)>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
-    /// A far jellyfish's thinned trail (`Trail::thin_into`), as both paths draw it.
+    /// The trails as both paths draw them (`recorded::drawn_view`).
     #[reflect(ignore)]
-    pub(crate) thin: Vec<Vec3>,
+    pub(crate) trails: DrawnTrails,
     pub(crate) slot: Option<u32>,
     /// The slice the frame shows, blended between the steps around its time (a far
     /// jellyfish's frame reads its recorded step in place instead, see `rebuild`).

@@ -54,7 +54,7 @@ pub(super) fn build_buffers(
                 block,
                 shared,
                 buffers,
-                thin,
+                trails,
                 ..
             } = meshes;
             // A far jellyfish shows its recorded step as it is: read in place, not copied.
@@ -76,7 +76,7 @@ pub(super) fn build_buffers(
                 return;
             }
             let res = settings.resolution(&slice.species);
-            let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, thin);
+            let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, trails);
             let (seed, time) = (slice.seed, shown.time as f32);
             let step = step.and_then(|s| s.recorded.as_ref());
             let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {

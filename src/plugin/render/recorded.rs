@@ -13,6 +13,7 @@ use crate::shape::mesh::Resolution;
 use crate::shape::packed::{self, ShapePacker};
 use crate::sim::SliceView;
 use crate::sim::cycle::CycleCache;
+use crate::sim::guides::{THIN_NODES, Trail};
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -110,22 +111,54 @@ pub(crate) fn shown_step<'a>(a: &'a Snapshot, b: &'a Snapshot, t: f32) -> &'a Sn
     if t < 0.5 { a } else { b }
 }
 
+/// Where a drawn view's trails are written: the fringe's (thinned where a far jellyfish
+/// shows a recorded step) and the oral tubes'.
+#[derive(Debug, Default)]
+pub(crate) struct DrawnTrails {
+    fringe: Vec<Vec3>,
+    oral: Vec<Vec3>,
+}
+
 /// What a jellyfish's frame is drawn from, on either path and for picking alike:
-/// `shown`'s view, its fringe's trail thinned (`Trail::thin_into`, into `thin`) where a far
-/// jellyfish shows a recorded step.
+/// `shown`'s view with its trails rounded to halves as the templates carry them
+/// (`packed::round_to_halves`), so that both paths draw the same surface. Where a far
+/// jellyfish shows a recorded step, its fringe's trail is thinned (`Trail::thin_into`)
+/// and its oral tubes hang untrailed, as its instance carries them (`pack_instance`).
 pub(crate) fn drawn_view<'a>(
     shown: &'a Snapshot,
     far: bool,
     rest_bell: &'a [Vec2],
     res: &Resolution,
-    thin: &'a mut Vec<Vec3>,
+    trails: &'a mut DrawnTrails,
 ) -> SliceView<'a> {
     let mut view = shown.view(rest_bell);
-    let guides = packed::far_guides(res);
-    // A far step keeps its trail thinned already (`Snapshot::set_thin_trail`).
-    let thinned = shown.thin_trail && view.trail.guides() == guides;
-    if far && shown.recorded.is_some() && !thinned {
-        view.trail = view.trail.thin_into(guides, thin);
+    let DrawnTrails { fringe, oral } = trails;
+    if far && shown.recorded.is_some() {
+        let guides = packed::far_guides(res);
+        // A far step keeps its trail thinned and rounded (`Snapshot::set_thin_trail`).
+        if !(shown.thin_trail && view.trail.guides() == guides) {
+            view.trail.thin_into(guides, fringe);
+            packed::round_to_halves(fringe);
+            view.trail = Trail {
+                offsets: fringe,
+                nodes: THIN_NODES,
+            };
+        }
+        view.oral_trail = Trail::NONE;
+        return view;
     }
+    view.trail = rounded(view.trail, fringe);
+    view.oral_trail = rounded(view.oral_trail, oral);
     view
+}
+
+/// `trail` rounded to halves, in `out`.
+fn rounded<'a>(trail: Trail, out: &'a mut Vec<Vec3>) -> Trail<'a> {
+    out.clear();
+    out.extend_from_slice(trail.offsets);
+    packed::round_to_halves(out);
+    Trail {
+        offsets: out,
+        nodes: trail.nodes,
+    }
 }

@@ -192,8 +192,8 @@ impl Step<'_> {
                 history.record(clock, frame, motion.pose, |s| {
                     s.copy_frame(&replay.cache, replay.index(), time, swim);
                     // Only what it draws: its frames read the thinned trail in place.
-                    let (fringe, oral) = trail.unwrap_or_default();
-                    s.set_thin_trail(fringe, oral, packed::far_guides_of(stroke.species));
+                    let (fringe, _) = trail.unwrap_or_default();
+                    s.set_thin_trail(fringe, packed::far_guides_of(stroke.species));
                 });
                 if stroke_begins(clock, resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
