@@ -4,10 +4,11 @@
 //! strokes.
 //!
 //! A member decides its heading every [`STEER_EVERY`] ticks, the school's members in turn
-//! by their number: at Bevy's 64 Hz fixed rate that is 16 times a second, far more often
-//! than the second a stroke takes, and a tick pays for a quarter of a crowded tank's
-//! neighbours (at 1002 jellyfish, about 60 within reach of each). Finding them is still a
-//! fifth of the CPU of 10,002 jellyfish (`docs/benchmarks.md`).
+//! by their number: at Bevy's 64 Hz fixed rate that is 4 times a second, still more often
+//! than the second a stroke takes (and a jellyfish turns only while it strokes), and a
+//! tick pays for a sixteenth of a crowded tank's neighbours (at 1002 jellyfish, about 60
+//! within reach of each). At 16 times a second finding them was a fifth of the CPU of
+//! 10,002 jellyfish (`docs/benchmarks.md`).
 
 use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, Swimmer};
@@ -25,7 +26,7 @@ const PUSH: f32 = 3.0;
 /// and a member of an overfull box does not pay for the hundreds within its reach.
 const NEAREST: usize = 7;
 /// A member decides its heading in one fixed tick of this many.
-pub(super) const STEER_EVERY: u32 = 4;
+pub(super) const STEER_EVERY: u32 = 16;
 
 /// Sets every member's heading.
 pub(super) fn steer_schools(
