@@ -287,3 +287,44 @@ fn a_shared_frame_with_its_own_words_is_its_own_block() {
         );
     }
 }
+
+/// A trail rounded to halves is each offset's components rounded one by one, however many
+/// offsets (more than one batch of the conversion), rounding again changes nothing, and
+/// packing the rounded trail carries it exactly: the CPU path draws what the templates
+/// read back.
+#[test]
+fn a_rounded_trail_is_what_a_packed_shape_carries() {
+    let offsets: Vec<Vec3> = (0..37)
+        .map(|i| {
+            let f = i as f32;
+            Vec3::new(
+                0.013 * (f * 0.7).sin(),
+                -0.002 * f,
+                1e-3 * (f * 1.3).cos() + 1e-7,
+            )
+        })
+        .collect();
+    let mut rounded = offsets.clone();
+    round_to_halves(&mut rounded);
+    for (a, b) in offsets.iter().zip(&rounded) {
+        assert_eq!(halves(*a), *b);
+    }
+    assert!(offsets.iter().zip(&rounded).any(|(a, b)| a != b));
+    let mut again = rounded.clone();
+    round_to_halves(&mut again);
+    assert_eq!(again, rounded);
+    let mut packed = Vec::new();
+    write_halves(&rounded[1..GUIDE_NODES], &mut packed);
+    let unpacked: Vec<f32> = packed
+        .iter()
+        .flat_map(|v| {
+            let bits = v.to_bits();
+            [bits as u16, (bits >> 16) as u16].map(|h| half::f16::from_bits(h).to_f32())
+        })
+        .collect();
+    let carried: Vec<f32> = rounded[1..GUIDE_NODES]
+        .iter()
+        .flat_map(|d| d.to_array())
+        .collect();
+    assert_eq!(unpacked[..carried.len()], carried[..]);
+}
