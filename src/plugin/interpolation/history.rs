@@ -112,6 +112,12 @@ impl SliceHistory {
         self.begin(clock, pose, |s| s.clone_from(now));
     }
 
+    /// Whether the next steps fade from the last tier's shape (`change_tier`): they become
+    /// shapes of their own, not their recorded steps.
+    pub fn fading(&self) -> bool {
+        self.carry.is_some()
+    }
+
     /// The newest recorded step: none before the jellyfish starts.
     pub fn newest(&self) -> Option<&Snapshot> {
         self.states.back()

@@ -189,11 +189,17 @@ impl Step<'_> {
                     (guides.offsets(), guides.oral_offsets())
                 });
                 let (time, swim) = (clock.time(), replay.swim as f32);
+                // A step that fades from the last tier's shape is drawn as a shape of its
+                // own, whole trail and all; any other, only what it draws, read in place.
+                let fading = history.fading();
                 history.record(clock, frame, motion.pose, |s| {
                     s.copy_frame(&replay.cache, replay.index(), time, swim);
-                    // Only what it draws: its frames read the thinned trail in place.
-                    let (fringe, _) = trail.unwrap_or_default();
-                    s.set_thin_trail(fringe, packed::far_guides_of(stroke.species));
+                    let (fringe, oral) = trail.unwrap_or_default();
+                    if fading {
+                        s.set_trail(fringe, oral);
+                    } else {
+                        s.set_thin_trail(fringe, packed::far_guides_of(stroke.species));
+                    }
                 });
                 if stroke_begins(clock, resting) {
                     self.events.push(entity, Lifecycle::Stroke(clock.cycle()));
