@@ -3,7 +3,7 @@
 //! and cannot leave it; limits that join fields (proportions, budgets) are validation's,
 //! shown as an error above the sliders.
 
-use crate::species::{Advection, GonadShape, Kernel, SliceGeometry, Species, limits};
+use crate::species::{Advection, FringeDrag, GonadShape, Kernel, SliceGeometry, Species, limits};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -193,6 +193,7 @@ pub const SECTIONS: &[Section] = &[
 pub const OTHER_FIELDS: &[&str] = &[
     "name",
     "slice_geometry",
+    "fringe_drag",
     "advection",
     "kernel",
     "structural_abs",
@@ -250,6 +251,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= ui.checkbox(&mut species.structural_abs, "").changed();
                                 ui.end_row();
                             }
+                            "Tentacles" => changed |= fringe_drag(ui, &mut species.fringe_drag),
                             "Anatomy" => {
                                 changed |= gonad_shape(ui, &mut species.gonad_shape);
                                 ui.label("gonad colour").on_hover_text("gonad_color");
@@ -298,6 +300,24 @@ fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
         });
     ui.end_row();
     *geometry != before
+}
+
+fn fringe_drag(ui: &mut egui::Ui, law: &mut FringeDrag) -> bool {
+    ui.label("fringe drag").on_hover_text(
+        "fringe_drag: Filaments drags each tentacle as a slender cylinder, by skin friction \
+         along it (the animals); Curtain lets a dense fringe carry its water and drag as \
+         much along as across (the paper's immersed tentacles)",
+    );
+    let before = *law;
+    egui::ComboBox::from_id_salt("fringe_drag")
+        .selected_text(format!("{law:?}"))
+        .show_ui(ui, |ui| {
+            for l in FringeDrag::ALL {
+                ui.selectable_value(law, l, format!("{l:?}"));
+            }
+        });
+    ui.end_row();
+    *law != before
 }
 
 fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {

@@ -1,5 +1,6 @@
-//! The enumerated fields of a species: the gonads' shape, the slice's geometry and two
-//! numerical choices kept with the species because its grid resolution is too.
+//! The enumerated fields of a species: the gonads' shape, the slice's geometry, how its
+//! fringe drags on the water, and two numerical choices kept with the species because its
+//! grid resolution is too.
 //!
 //! Their reflected type paths stay `bevy_jellyfish::species::*`, where they lived before
 //! this file split off, so that nothing reflected by path changes.
@@ -96,4 +97,31 @@ pub enum SliceGeometry {
 impl SliceGeometry {
     /// Every geometry, for pickers.
     pub const ALL: [SliceGeometry; 2] = [SliceGeometry::Planar, SliceGeometry::Axisymmetric];
+}
+
+/// How a fringe of tentacles drags on the water the slice resolves.
+///
+/// Across a tentacle both laws take a cylinder's drag. They differ along it, where a
+/// trailing fringe meets its water.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum FringeDrag {
+    /// Each tentacle a slender cylinder (resistive-force theory): along it only skin
+    /// friction, Stokes drag's tangential half (Cox 1970). A dense fringe slides as a
+    /// porous sheet whose skin friction is about as much again, so the law holds for it
+    /// too. The animals.
+    #[default]
+    Filaments,
+    /// The paper's tentacles, immersed chains that move with their water: where the
+    /// layers a dense fringe drags along span its gaps, it carries its water as a curtain
+    /// and drags as much along as across; sparse tentacles slide as filaments. The
+    /// curtain's drag is a wall's: at twelve cells per diameter it is the grid's, not the
+    /// water's (`docs/numerics.md`).
+    Curtain,
+}
+
+impl FringeDrag {
+    /// Every law, for pickers.
+    pub const ALL: [FringeDrag; 2] = [FringeDrag::Filaments, FringeDrag::Curtain];
 }

@@ -8,7 +8,8 @@
 //! - `presets`: the shipped species, the paper's model, variations and numerics;
 //! - `derived`: what follows from the fields (cell size, period, the fixed step...);
 //! - `file`: RON text in and out, validated against [`limits`];
-//! - `choices`: the enumerated fields (gonad shape, slice geometry, advection, kernel);
+//! - `choices`: the enumerated fields (gonad shape, slice geometry, fringe drag, advection,
+//!   kernel);
 //! - `error`: [`SpeciesError`].
 
 mod choices;
@@ -20,7 +21,7 @@ mod presets;
 #[cfg(test)]
 mod tests;
 
-pub use choices::{Advection, GonadShape, Kernel, SliceGeometry};
+pub use choices::{Advection, FringeDrag, GonadShape, Kernel, SliceGeometry};
 pub use error::SpeciesError;
 
 use serde::{Deserialize, Serialize};
@@ -114,8 +115,10 @@ pub struct Species {
     pub tentacle_length: f32,
     /// Cross-section of a tentacle spring as a fraction of a bell spring (paper: 1/100).
     pub tentacle_cross_section: f32,
-    /// Rendered tentacle radius, m.
+    /// Rendered tentacle radius, m: also the cylinder the water drags on.
     pub tentacle_radius: f32,
+    /// How the fringe drags on the water along its tentacles (see [`FringeDrag`]).
+    pub fringe_drag: FringeDrag,
     /// How much shorter than the slice's chain a tentacle may be drawn, as a fraction of
     /// it: each tentacle of an individual keeps its own length between `1 − spread` and 1
     /// of the chain, as a living fringe holds some tentacles contracted (0: an even

@@ -1,7 +1,7 @@
 //! The shipped species (as in `assets/species/`) and the paper's own variations and
 //! numerics, one call away.
 
-use super::{Advection, GonadShape, Kernel, SliceGeometry, Species};
+use super::{Advection, FringeDrag, GonadShape, Kernel, SliceGeometry, Species};
 
 impl Species {
     /// The moon jelly, *Aurelia aurita*, a young medusa of 40 mm shaped and timed from
@@ -39,9 +39,11 @@ impl Species {
             contraction_frequency: 0.7,
             contraction_duty: 0.28,
             relaxation_span: 0.5,
-            // Hundreds of short marginal tentacles, an eighth of the bell long.
+            // Hundreds of short marginal tentacles, an eighth of the bell long, each a
+            // slender cylinder in the water.
             tentacle_count: 200,
             tentacle_length: 0.005,
+            fringe_drag: FringeDrag::Filaments,
             ..Self::paper()
         }
     }
@@ -82,11 +84,14 @@ impl Species {
             expansion_stagger: 1.0,
             // A moon jelly's fringe: hundreds of short, fine marginal tentacles. Their drag
             // slows the bell by about a tenth (Miles & Battista 2019: tentacles reduce
-            // forward speed; measured here 9%, `tests/slice.rs`).
+            // forward speed; measured here 9%, `tests/slice.rs`). The paper's tentacles
+            // are immersed chains that move with their water, as a dense fringe does in
+            // the curtain law.
             tentacle_count: 200,
             tentacle_length: 0.015,
             tentacle_cross_section: 0.01,
             tentacle_radius: 0.00015,
+            fringe_drag: FringeDrag::Curtain,
             tentacle_length_spread: 0.35,
             // A current past the bell is a first harmonic around the margin and a turn a
             // second; eight guides draw both and their lag across a fringe of 200.
@@ -180,9 +185,11 @@ impl Species {
             contraction_duty: 0.28,
             contraction_ratio: 0.56,
             // A hundred long, fine tentacles, three quarters of the bell long: chosen.
+            // Slender cylinders: along its length the fringe drags by skin friction.
             tentacle_count: 100,
             tentacle_length: 0.045,
             tentacle_radius: 0.00025,
+            fringe_drag: FringeDrag::Filaments,
             // Some of a crystal jelly's long tentacles hang full length, others curled up.
             tentacle_length_spread: 0.6,
             tentacle_guides: 8,
@@ -270,6 +277,7 @@ impl Species {
             tentacle_count: 4,
             tentacle_length: 0.025,
             tentacle_radius: 0.0003,
+            fringe_drag: FringeDrag::Filaments,
             tentacle_length_spread: 0.15,
             // One guide per tentacle: each of the four trails on its own.
             tentacle_guides: 4,

@@ -4,7 +4,7 @@
 use super::Body;
 use super::depth::Depth;
 use super::outline::contains;
-use crate::species::Species;
+use crate::species::{FringeDrag, Species};
 
 /// The drag on one point of the slice's tentacle curtain, per metre of depth.
 ///
@@ -28,6 +28,8 @@ pub(super) struct TentacleDrag {
     length: f32,
     /// The water between neighbouring tentacles at the margin, m: π·D/count − 2a.
     gap: f32,
+    /// The species' law along a tentacle.
+    law: FringeDrag,
 }
 
 impl TentacleDrag {
@@ -39,6 +41,7 @@ impl TentacleDrag {
             - 2.0 * radius;
         Self {
             gap: gap.max(0.0),
+            law: species.fringe_drag,
             ..Self::cylinder(species, radius, length, per_depth * segment)
         }
     }
@@ -56,6 +59,7 @@ impl TentacleDrag {
             length_per_point,
             length,
             gap: 0.0,
+            law: FringeDrag::Filaments,
         }
     }
 
@@ -66,22 +70,32 @@ impl TentacleDrag {
     }
 
     /// [`TentacleDrag::at`] for a slip at `speed` (m/s) whose direction makes an angle θ
-    /// with the tentacle, `along` = cos²θ. Across a tentacle the cylinder's drag; along
-    /// it, an isolated cylinder has no form drag, only slender-body Stokes drag's
-    /// tangential half (Cox 1970; Lighthill 1976). But where the viscous layers the
-    /// tentacles drag along their length, `√(ν·L/U)` thick (Glauert & Lighthill 1955),
-    /// span the gaps between them, the fringe moves its water as one porous sheet, and
-    /// drags as much along as across: a dense fringe (the moon jelly's, *Aequorea*'s) is
-    /// unchanged, four tentacles a bell's width apart (*Sarsia*'s) trail almost freely.
+    /// with the tentacle, `along` = cos²θ (resistive-force theory: the slip's two
+    /// components resisted apart, Gray & Hancock 1955). Across a tentacle the cylinder's
+    /// drag; along it a cylinder has no form drag, only skin friction: slender-body Stokes
+    /// drag's tangential half (Cox 1970; Lighthill 1976).
+    ///
+    /// [`FringeDrag::Filaments`] keeps that for a dense fringe too: where the viscous
+    /// layers the tentacles drag along their length (`√(ν·L/U)` thick, Glauert & Lighthill
+    /// 1955) span the gaps between them, the fringe slides as one porous sheet, whose skin
+    /// friction (Blasius, `1.328/√Re_L` on each face) per tentacle's share is about the
+    /// isolated tangential drag again (unit test). [`FringeDrag::Curtain`], the paper's
+    /// immersed chains, lets such a fringe drag as much along as across: it moves with its
+    /// water, and the grid, not the water, then sets its drag.
     pub(crate) fn at_angle(&self, speed: f32, along: f32) -> f32 {
-        let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
-        let sheet = layer / self.gap.max(1e-9);
-        if sheet >= 1.0 || sheet.is_nan() {
-            return self.at(speed);
-        }
         let across = self.per_length(speed);
         let isolated = (0.5 * self.stokes).min(across);
-        let tangential = sheet * across + (1.0 - sheet) * isolated;
+        let tangential = match self.law {
+            FringeDrag::Filaments => isolated,
+            FringeDrag::Curtain => {
+                let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
+                let sheet = layer / self.gap.max(1e-9);
+                if sheet >= 1.0 || sheet.is_nan() {
+                    return self.at(speed);
+                }
+                sheet * across + (1.0 - sheet) * isolated
+            }
+        };
         let along = along.clamp(0.0, 1.0);
         (((1.0 - along) * across + along * tangential) * self.length_per_point).max(1e-9)
     }

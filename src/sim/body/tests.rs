@@ -239,36 +239,96 @@ fn hoop_bending_is_the_gradient_of_its_energy_and_stiffest_near_the_axis() {
 }
 
 #[test]
-fn isolated_tentacles_trail_freely_and_a_dense_fringe_drags_as_a_sheet() {
+fn a_tentacle_drags_less_along_than_across_and_a_dense_fringe_no_more_than_a_sheet() {
     use super::depth::Depth;
     use super::tentacle::TentacleDrag;
-    let drag = |s: &Species| TentacleDrag::new(s, 0.001, Depth::new(s, 0.0, 0.001));
-    // Sarsia's four tentacles, a bell's width apart: across them the cylinder's drag, along
-    // them far less, never less than slender-body Stokes drag's tangential half.
-    let sparse = drag(&Species::sarsia());
-    for speed in [0.005, 0.02, 0.08] {
-        let (across, along) = (sparse.at_angle(speed, 0.0), sparse.at_angle(speed, 1.0));
-        assert_eq!(across, sparse.at(speed), "at {speed} m/s");
-        assert!(
-            along < 0.6 * across,
-            "at {speed} m/s: {along} along, {across} across"
-        );
-        let oblique = sparse.at_angle(speed, 0.5);
-        assert!(along < oblique && oblique < across, "at {speed} m/s");
+    use crate::species::FringeDrag;
+    // One point per millimetre of a planar slice's tentacles.
+    let segment = 0.001;
+    let drag = |s: &Species| {
+        let planar = Species {
+            slice_geometry: crate::species::SliceGeometry::Planar,
+            ..s.clone()
+        };
+        TentacleDrag::new(&planar, segment, Depth::new(&planar, 0.0, segment))
+    };
+    let filaments = |s: Species| Species {
+        fringe_drag: FringeDrag::Filaments,
+        ..s
+    };
+    for s in [
+        Species::sarsia(),
+        Species::aurelia(),
+        Species::aequorea(),
+        filaments(Species::paper()),
+    ] {
+        let d = drag(&s);
+        for speed in [0.005, 0.01, 0.02, 0.08] {
+            let (across, along) = (d.at_angle(speed, 0.0), d.at_angle(speed, 1.0));
+            let oblique = d.at_angle(speed, 0.5);
+            assert_eq!(across, d.at(speed), "{} at {speed} m/s", s.name);
+            assert!(
+                along < 0.6 * across && along < oblique && oblique < across,
+                "{} at {speed} m/s: {along} along, {oblique} oblique, {across} across",
+                s.name
+            );
+        }
     }
-    // The moon jelly's two hundred, closer than the water they drag along is thick: the
-    // same drag whichever way the water slips past, to the bit.
-    let dense = drag(&Species::aurelia());
+    // The moon jelly's and the crystal jelly's fringes are closer than the layers their
+    // tentacles drag along are thick: each slides as a porous sheet. Its skin friction
+    // (Blasius: 1.328/√Re_L on each face, over the fringe's length) per tentacle's share
+    // is of the isolated tentacle's tangential drag (within a factor of three, the sheet's
+    // the less as its layers thicken), never the cylinder's drag across.
+    for s in [Species::aurelia(), Species::aequorea()] {
+        let d = drag(&s);
+        let nu = s.kinematic_viscosity();
+        let spacing = std::f32::consts::PI * s.diameter / s.tentacle_count as f32;
+        let per_point = segment / spacing;
+        for speed in [0.005, 0.01, 0.02] {
+            let layer = (nu * s.tentacle_length / speed).sqrt();
+            assert!(layer > spacing - 2.0 * s.tentacle_radius, "{}", s.name);
+            let sheet = s.density * 1.328 * (speed * nu / s.tentacle_length).sqrt() * spacing;
+            let along = d.at_angle(speed, 1.0) / per_point;
+            let across = d.at_angle(speed, 0.0) / per_point;
+            assert!(
+                (1.0 / 3.0..3.0).contains(&(along / sheet)) && across > 4.0 * sheet,
+                "{} at {speed} m/s: along {along}, sheet {sheet}, across {across} N·s/m²",
+                s.name
+            );
+        }
+    }
+}
+
+#[test]
+fn the_papers_curtain_drags_a_dense_fringe_as_much_along_as_across() {
+    use super::depth::Depth;
+    use super::tentacle::TentacleDrag;
+    use crate::species::FringeDrag;
+    let drag = |s: &Species| TentacleDrag::new(s, 0.001, Depth::new(s, 0.0, 0.001));
+    let curtain = |s: Species| Species {
+        fringe_drag: FringeDrag::Curtain,
+        ..s
+    };
+    // The paper's two hundred, closer than the water they drag along is thick: the same
+    // drag whichever way the water slips past, to the bit.
+    let dense = drag(&Species::paper());
+    assert_eq!(Species::paper().fringe_drag, FringeDrag::Curtain);
     for speed in [0.005, 0.02] {
         for along in [0.0, 0.3, 1.0] {
             assert_eq!(dense.at_angle(speed, along), dense.at(speed));
         }
     }
+    // Sarsia's four, a bell's width apart, still trail: along them far less.
+    let sparse = drag(&curtain(Species::sarsia()));
+    for speed in [0.005, 0.02, 0.08] {
+        let (across, along) = (sparse.at_angle(speed, 0.0), sparse.at_angle(speed, 1.0));
+        assert!(along < 0.6 * across, "at {speed} m/s: {along}, {across}");
+    }
     // Between the two the drag along grows continuously as the gaps close.
     let along_with = |count: u32| {
         let s = Species {
             tentacle_count: count,
-            ..Species::sarsia()
+            ..curtain(Species::sarsia())
         };
         let d = drag(&s);
         d.at_angle(0.02, 1.0) / d.at(0.02)
