@@ -6,7 +6,7 @@
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
 //! margin and height; then each shipped species at other sizes, every length scaled
-//! and the pulse rate set to the animal's at that size. Writes `kinematics.csv` and `kinematics.png`
+//! and the pulse rate set to the animal's at that size, with its refill's slowest speed too. Writes `kinematics.csv` and `kinematics.png`
 //! into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--set field=value …]`
@@ -148,6 +148,15 @@ fn resized(base: &Species, scale: f32) -> Species {
     }
 }
 
+/// The slowest speed while the bell refills (after its contraction) in stroke `stroke`,
+/// diameters per second: negative where it drifts backwards.
+fn slowest_in_refill(species: &Species, samples: &[Sample], stroke: u32) -> f32 {
+    cycle(samples, stroke)
+        .filter(|(phase, _)| *phase > species.contraction_duty)
+        .map(|(_, x)| x.speed)
+        .fold(f32::MAX, f32::min)
+}
+
 /// The record: (phase, margin, widest, height), lengths over the rest diameter.
 fn record(path: &Path) -> Vec<(f32, f32, f32, f32)> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -195,10 +204,7 @@ fn main() {
     for (s, samples) in &runs {
         let strokes = per_stroke(samples);
         let steady = under_way_per_stroke(samples);
-        let refill = cycle(samples, under_way)
-            .filter(|(phase, _)| *phase > s.contraction_duty)
-            .map(|(_, x)| x.speed)
-            .fold(f32::MAX, f32::min);
+        let refill = slowest_in_refill(s, samples, under_way);
         let (margin, height) = contracted(samples, under_way);
         let first: Vec<String> = strokes.iter().take(3).map(|d| format!("{d:.3}")).collect();
         println!(
@@ -226,14 +232,15 @@ fn main() {
         strokes,
     );
     println!(
-        "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | margin contracted | height contracted |"
+        "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | slowest in the refill (D/s) | margin contracted | height contracted |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     for (s, samples) in &resized_runs {
         let steady = under_way_per_stroke(samples);
+        let refill = slowest_in_refill(s, samples, under_way);
         let (margin, height) = contracted(samples, under_way);
         println!(
-            "| {} | {:.2} | {steady:.3} | {:.1} | {margin:.2} | {height:.2} |",
+            "| {} | {:.2} | {steady:.3} | {:.1} | {refill:+.3} | {margin:.2} | {height:.2} |",
             s.name,
             s.contraction_frequency,
             steady * s.diameter * s.contraction_frequency * 1000.0
