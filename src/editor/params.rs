@@ -284,86 +284,60 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
     changed
 }
 
-fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
-    ui.label("slice geometry").on_hover_text(
-        "slice_geometry: Planar is the paper's slice (a vortex-pair wake); Axisymmetric is a \
-         body of revolution (every point a ring, a vortex-ring wake); changing it rebuilds \
-         the slice at rest",
-    );
-    let before = *geometry;
-    egui::ComboBox::from_id_salt("slice_geometry")
-        .selected_text(format!("{geometry:?}"))
+/// A row with a drop-down of every value of the enumerated field `field`, labelled
+/// `label`, with `why` on hover; true if the user picked another.
+fn picker<T: Copy + PartialEq + std::fmt::Debug>(
+    ui: &mut egui::Ui,
+    field: &str,
+    label: &str,
+    why: &str,
+    value: &mut T,
+    all: &[T],
+) -> bool {
+    ui.label(label).on_hover_text(format!("{field}: {why}"));
+    let before = *value;
+    egui::ComboBox::from_id_salt(field)
+        .selected_text(format!("{value:?}"))
         .show_ui(ui, |ui| {
-            for g in SliceGeometry::ALL {
-                ui.selectable_value(geometry, g, format!("{g:?}"));
+            for &v in all {
+                ui.selectable_value(value, v, format!("{v:?}"));
             }
         });
     ui.end_row();
-    *geometry != before
+    *value != before
+}
+
+fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
+    let why = "Planar is the paper's slice (a vortex-pair wake); Axisymmetric is a body of \
+               revolution (every point a ring, a vortex-ring wake); changing it rebuilds \
+               the slice at rest";
+    let all = &SliceGeometry::ALL;
+    picker(ui, "slice_geometry", "slice geometry", why, geometry, all)
 }
 
 fn fringe_drag(ui: &mut egui::Ui, law: &mut FringeDrag) -> bool {
-    ui.label("fringe drag").on_hover_text(
-        "fringe_drag: Filaments drags each tentacle as a slender cylinder, by skin friction \
-         along it (the animals); Curtain lets a dense fringe carry its water and drag as \
-         much along as across (the paper's immersed tentacles)",
-    );
-    let before = *law;
-    egui::ComboBox::from_id_salt("fringe_drag")
-        .selected_text(format!("{law:?}"))
-        .show_ui(ui, |ui| {
-            for l in FringeDrag::ALL {
-                ui.selectable_value(law, l, format!("{l:?}"));
-            }
-        });
-    ui.end_row();
-    *law != before
+    let why = "Filaments drags each tentacle as a slender cylinder, by skin friction along \
+               it (the animals); Curtain lets a dense fringe carry its water and drag as \
+               much along as across (the paper's immersed tentacles)";
+    let all = &FringeDrag::ALL;
+    picker(ui, "fringe_drag", "fringe drag", why, law, all)
 }
 
 fn advection(ui: &mut egui::Ui, advection: &mut Advection) -> bool {
-    ui.label("advection").on_hover_text(
-        "advection: semi-Lagrangian is the steadiest; MacCormack and Cubic have less \
-         numerical viscosity",
-    );
-    let before = *advection;
-    egui::ComboBox::from_id_salt("advection")
-        .selected_text(format!("{advection:?}"))
-        .show_ui(ui, |ui| {
-            for scheme in Advection::ALL {
-                ui.selectable_value(advection, scheme, format!("{scheme:?}"));
-            }
-        });
-    ui.end_row();
-    *advection != before
+    let why = "semi-Lagrangian is the steadiest; MacCormack and Cubic have less numerical \
+               viscosity";
+    let all = &Advection::ALL;
+    picker(ui, "advection", "advection", why, advection, all)
 }
 
 fn gonad_shape(ui: &mut egui::Ui, shape: &mut GonadShape) -> bool {
-    ui.label("gonad shape").on_hover_text("gonad_shape");
-    let before = *shape;
-    egui::ComboBox::from_id_salt("gonad_shape")
-        .selected_text(format!("{shape:?}"))
-        .show_ui(ui, |ui| {
-            for s in GonadShape::ALL {
-                ui.selectable_value(shape, s, format!("{s:?}"));
-            }
-        });
-    ui.end_row();
-    *shape != before
+    let why = "how the gonads are drawn through the bell";
+    let all = &GonadShape::ALL;
+    picker(ui, "gonad_shape", "gonad shape", why, shape, all)
 }
 
 fn kernel(ui: &mut egui::Ui, kernel: &mut Kernel) -> bool {
-    ui.label("kernel").on_hover_text(
-        "kernel: how the bell meets the water; Roma3 does not see the grid, Bilinear is the \
-         paper's",
-    );
-    let before = *kernel;
-    egui::ComboBox::from_id_salt("kernel")
-        .selected_text(format!("{kernel:?}"))
-        .show_ui(ui, |ui| {
-            for k in Kernel::ALL {
-                ui.selectable_value(kernel, k, format!("{k:?}"));
-            }
-        });
-    ui.end_row();
-    *kernel != before
+    let why = "how the bell meets the water; Roma3 does not see the grid, Bilinear is the \
+               paper's";
+    picker(ui, "kernel", "kernel", why, kernel, &Kernel::ALL)
 }
