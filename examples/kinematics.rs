@@ -6,8 +6,8 @@
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
 //! margin and height; then each shipped species at other sizes, every length scaled
-//! and the pulse rate set to the animal's at that size, with its refill's slowest speed too. Writes `kinematics.csv` and `kinematics.png`
-//! into `--out` (default `docs/`).
+//! and the pulse rate set to the animal's at that size, with its refill's slowest speed
+//! too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--set field=value …]`
 //! (`--set` changes every species, the paper's and the resized moon jellies too).
