@@ -20,19 +20,20 @@ pub(crate) struct Coupling {
 impl Coupling {
     /// Finds the stencils of `points` on `fluid`'s grid.
     pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2]) {
-        self.u.clear();
-        self.v.clear();
-        self.u
-            .extend(points.iter().map(|p| fluid.stencil(Component::U, *p)));
-        self.v
-            .extend(points.iter().map(|p| fluid.stencil(Component::V, *p)));
+        // In place: a stencil built and then moved was read back before its own stores
+        // had landed (a store-forwarding stall per copy).
+        self.u.resize(points.len(), Stencil::default());
+        self.v.resize(points.len(), Stencil::default());
+        for ((p, u), v) in points.iter().zip(&mut self.u).zip(&mut self.v) {
+            fluid.locate(Component::U, *p, u);
+            fluid.locate(Component::V, *p, v);
+        }
     }
 
     /// Fluid velocity at each located point.
     pub(crate) fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
-        let sample = |s: &Stencil, field: &[f32]| s.iter().map(|(i, w)| w * field[i]).sum();
         for ((o, su), sv) in out.iter_mut().zip(&self.u).zip(&self.v) {
-            *o = Vec2::new(sample(su, &fluid.u), sample(sv, &fluid.v));
+            *o = Vec2::new(su.sample(&fluid.u), sv.sample(&fluid.v));
         }
     }
 
@@ -43,12 +44,8 @@ impl Coupling {
         let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
         let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
         for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
-            for (i, column, w) in su.iter_columns() {
-                force_u[i] += w * f.x * scale_u[column];
-            }
-            for (i, column, w) in sv.iter_columns() {
-                force_v[i] += w * f.y * scale_v[column];
-            }
+            su.spread(f.x, scale_u, force_u);
+            sv.spread(f.y, scale_v, force_v);
         }
     }
 }

@@ -20,7 +20,7 @@ pub(crate) use crate::species::Kernel;
 const MAX_TAPS: usize = 13;
 
 /// Weights along one axis: faces `index[..len]` with weights `weight[..len]`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Taps {
     /// Face indices: `u32`, so that a stencil (copied once per point and step) is a
     /// third smaller.
@@ -31,7 +31,7 @@ struct Taps {
 
 /// The faces of one component around a point, and their weights (summing to 1): the
 /// product of one set of taps across and one along.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Stencil {
     x: Taps,
     y: Taps,
@@ -39,22 +39,8 @@ pub(crate) struct Stencil {
 }
 
 impl Stencil {
-    /// `(face index, column, weight)` triples: the column is the face's index across, for
-    /// what varies across the grid only (an axisymmetric slice's radii).
-    pub(crate) fn iter_columns(&self) -> impl Iterator<Item = (usize, usize, f32)> + '_ {
-        let (x, y, row) = (&self.x, &self.y, self.row);
-        (0..y.len).flat_map(move |b| {
-            (0..x.len).map(move |a| {
-                (
-                    y.index[b] as usize * row + x.index[a] as usize,
-                    x.index[a] as usize,
-                    x.weight[a] * y.weight[b],
-                )
-            })
-        })
-    }
-
     /// `(face index, weight)` pairs.
+    #[cfg(test)]
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
         let (x, y, row) = (&self.x, &self.y, self.row);
         (0..y.len).flat_map(move |b| {
@@ -63,6 +49,33 @@ impl Stencil {
                 (face, x.weight[a] * y.weight[b])
             })
         })
+    }
+
+    /// The weighted sum of `field` over the stencil's faces, rows in order.
+    pub(crate) fn sample(&self, field: &[f32]) -> f32 {
+        let (x, y) = (&self.x, &self.y);
+        let mut sum = -0.0f32;
+        for b in 0..y.len {
+            let (start, wy) = (y.index[b] as usize * self.row, y.weight[b]);
+            for a in 0..x.len {
+                sum += x.weight[a] * wy * field[start + x.index[a] as usize];
+            }
+        }
+        sum
+    }
+
+    /// Adds `value` to `field` at the stencil's faces, each share times its weight and
+    /// the scale of its column (what varies across the grid only: an axisymmetric slice's
+    /// radii); the adjoint of [`Self::sample`].
+    pub(crate) fn spread(&self, value: f32, scale: &[f32], field: &mut [f32]) {
+        let (x, y) = (&self.x, &self.y);
+        for b in 0..y.len {
+            let (start, wy) = (y.index[b] as usize * self.row, y.weight[b]);
+            for a in 0..x.len {
+                let column = x.index[a] as usize;
+                field[start + column] += x.weight[a] * wy * value * scale[column];
+            }
+        }
     }
 }
 
@@ -78,10 +91,23 @@ fn roma(r: f32) -> f32 {
     }
 }
 
+/// The floor of a finite `x ≥ 0`, by truncation: a library call on targets without
+/// SSE4.1, and the kernel's bounds take two of them per axis and point.
+fn floor_non_negative(x: f32) -> f32 {
+    x as i32 as f32
+}
+
+/// The ceiling of a finite `x` within `i32`'s range, by truncation (a negative `x` already
+/// truncates upwards). It gives +0 where `ceil` gives −0, which no weight can tell apart.
+fn ceil_in_range(x: f32) -> f32 {
+    let t = x as i32 as f32;
+    if t < x { t + 1.0 } else { t }
+}
+
 /// Weights of `kernel` at fractional face coordinate `g` among `count` faces, the
-/// three-point kernel stretched `stretch ≥ 1` times. Faces past either end fold onto the
-/// end face, so the weights still sum to 1.
-fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
+/// three-point kernel stretched `stretch ≥ 1` times, written over `t`. Faces past either
+/// end fold onto the end face, so the weights still sum to 1.
+fn taps_into(t: &mut Taps, kernel: Kernel, g: f32, count: usize, stretch: f32) {
     let last = count as f32 - 1.0;
     let g = if g.is_finite() {
         g.clamp(0.0, last)
@@ -89,14 +115,10 @@ fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
         0.0
     };
     let clamp = |i: f32| i.clamp(0.0, last) as u32;
-    let mut t = Taps {
-        index: [0; MAX_TAPS],
-        weight: [0.0; MAX_TAPS],
-        len: 0,
-    };
+    t.len = 0;
     match kernel {
         Kernel::Bilinear => {
-            let i0 = g.floor().min(last - 1.0).max(0.0);
+            let i0 = floor_non_negative(g).min(last - 1.0).max(0.0);
             let f = g - i0;
             t.index[..2].copy_from_slice(&[clamp(i0), clamp(i0 + 1.0)]);
             t.weight[..2].copy_from_slice(&[1.0 - f, f]);
@@ -105,7 +127,7 @@ fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
         Kernel::Roma3 => {
             let stretch = stretch.clamp(1.0, (MAX_TAPS - 1) as f32 / 3.0);
             let reach = 1.5 * stretch;
-            let (first, end) = ((g - reach).ceil(), (g + reach).floor());
+            let (first, end) = (ceil_in_range(g - reach), floor_non_negative(g + reach));
             let mut i = first;
             while i <= end && t.len < MAX_TAPS {
                 let w = roma((i - g) / stretch);
@@ -137,29 +159,41 @@ fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
             }
         }
     }
-    t
 }
 
-/// The stencil of a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array
-/// of faces (row-major), the kernel stretched `stretch` times (see the module).
-pub(crate) fn stencil(
-    kernel: Kernel,
-    gx: f32,
-    gy: f32,
-    nx: usize,
-    ny: usize,
-    stretch: f32,
-) -> Stencil {
-    Stencil {
-        x: taps(kernel, gx, nx, stretch),
-        y: taps(kernel, gy, ny, stretch),
-        row: nx,
+impl Stencil {
+    /// Locates a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array of
+    /// faces (row-major), the kernel stretched `stretch` times (see the module), in place:
+    /// a step locates every point of the body, and a stencil built and then copied was
+    /// read back before its own stores had landed.
+    pub(crate) fn locate(
+        &mut self,
+        kernel: Kernel,
+        (gx, gy): (f32, f32),
+        (nx, ny): (usize, usize),
+        stretch: f32,
+    ) {
+        taps_into(&mut self.x, kernel, gx, nx, stretch);
+        taps_into(&mut self.y, kernel, gy, ny, stretch);
+        self.row = nx;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn taps(kernel: Kernel, g: f32, count: usize, stretch: f32) -> Taps {
+        let mut t = Taps::default();
+        taps_into(&mut t, kernel, g, count, stretch);
+        t
+    }
+
+    fn stencil(kernel: Kernel, gx: f32, gy: f32, nx: usize, ny: usize, stretch: f32) -> Stencil {
+        let mut s = Stencil::default();
+        s.locate(kernel, (gx, gy), (nx, ny), stretch);
+        s
+    }
 
     fn moments(kernel: Kernel, g: f32, stretch: f32) -> (f32, f32, f32) {
         let t = taps(kernel, g, 100, stretch);
@@ -212,6 +246,39 @@ mod tests {
             assert!(s < 0.04, "three-point ×{stretch}: {s}");
         }
         assert!(spread(Kernel::Bilinear, 1.0) > 0.4);
+    }
+
+    #[test]
+    fn bounds_by_truncation_are_the_library_floor_and_ceiling() {
+        // Every quarter and a few ulps either side of each integer, as a kernel's bounds
+        // meet them (a point on a face, a whole stretch).
+        for k in -40..=400 {
+            let x = k as f32 / 4.0;
+            for x in [x, x.next_up(), x.next_down()] {
+                assert_eq!(ceil_in_range(x), x.ceil(), "ceil {x}");
+                if x >= 0.0 {
+                    assert_eq!(floor_non_negative(x), x.floor(), "floor {x}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sampling_and_spreading_are_adjoint() {
+        // ⟨spread(f), field⟩ = f·sample(field) for any field: what the body reads from the
+        // water is what it gives back, face for face.
+        let field: Vec<f32> = (0..40 * 40)
+            .map(|i| ((i * 37) % 101) as f32 / 50.0 - 1.0)
+            .collect();
+        let scale = vec![1.0; 40];
+        for (g, stretch) in [(7.3, 1.0), (12.5, 1.2), (20.01, 1.5), (0.2, 2.0)] {
+            let s = stencil(Kernel::Roma3, g, g + 3.7, 40, 40, stretch);
+            let mut spread = vec![0.0f32; field.len()];
+            s.spread(2.5, &scale, &mut spread);
+            let inner: f32 = spread.iter().zip(&field).map(|(a, b)| a * b).sum();
+            let read = 2.5 * s.sample(&field);
+            assert!((inner - read).abs() < 1e-5, "{g}: {inner} against {read}");
+        }
     }
 
     #[test]

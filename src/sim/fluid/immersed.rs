@@ -3,7 +3,7 @@
 //! which makes interpolation and spreading adjoint and spreading exactly force-conserving.
 
 use super::{Component, Fluid};
-use crate::sim::kernel::{self, Stencil};
+use crate::sim::kernel::Stencil;
 use glam::Vec2;
 
 impl Fluid {
@@ -54,18 +54,25 @@ impl Fluid {
             Component::U => &self.u,
             Component::V => &self.v,
         };
-        self.stencil(c, p).iter().map(|(i, w)| w * field[i]).sum()
+        self.stencil(c, p).sample(field)
     }
 
     /// The faces of component `c` around `p` and their weights under the fluid's
     /// [`Kernel`] (summing to 1). Interpolation and force spreading both use this, which
     /// makes them adjoint.
     pub(crate) fn stencil(&self, c: Component, p: Vec2) -> Stencil {
+        let mut s = Stencil::default();
+        self.locate(c, p, &mut s);
+        s
+    }
+
+    /// [`Self::stencil`], written over `out`.
+    pub(crate) fn locate(&self, c: Component, p: Vec2, out: &mut Stencil) {
         let n = self.n;
         let (gx, gy, nx, ny) = match c {
             Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
             Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
         };
-        kernel::stencil(self.kernel, gx, gy, nx, ny, self.kernel_stretch)
+        out.locate(self.kernel, (gx, gy), (nx, ny), self.kernel_stretch);
     }
 }
