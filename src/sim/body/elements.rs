@@ -212,6 +212,29 @@ fn stiffen_beyond(c: &mut Constraint, knee: f32, factor: f32) {
     }
 }
 
+/// Each element's strain or bend from rest alone (`Constraint::raw`, the same operations),
+/// in the order of [`constraints`]: what the mesoglea's viscosity needs of the positions
+/// before a step, without the gradients.
+pub(super) fn raw_values<'a>(body: &'a Body, x: &'a [Vec2]) -> impl Iterator<Item = f32> + 'a {
+    let stretch = |a: usize, b: usize, rest: f32| (x[b] - x[a]).length() - rest;
+    let springs = body.springs.iter().map(move |s| stretch(s.a, s.b, s.rest));
+    let muscles = body.muscles.iter().map(move |m| stretch(m.a, m.b, m.rest));
+    let hinges = body
+        .hinges
+        .iter()
+        .map(move |h| hinge_bend(x[h.a] - x[h.b], x[h.c] - x[h.b], h.rest));
+    let hoop_bends = body
+        .hoop_bends
+        .iter()
+        .map(move |h| slope_sine(x[h.b] - x[h.a]) - h.rest);
+    springs.chain(muscles).chain(hinges).chain(hoop_bends)
+}
+
+/// A hinge's bend from rest, between its edges `e1` and `e2` from the middle point.
+fn hinge_bend(e1: Vec2, e2: Vec2, rest: f32) -> f32 {
+    wrap_angle(signed_angle(e1, e2) - rest)
+}
+
 pub(super) fn constraints<'a>(
     body: &'a Body,
     x: &'a [Vec2],
@@ -252,7 +275,7 @@ pub(super) fn constraints<'a>(
         let l2 = e2.length_squared().max(1e-18);
         let ga = -e1.perp() / l1;
         let gc = e2.perp() / l2;
-        let bend = wrap_angle(signed_angle(e1, e2) - h.rest);
+        let bend = hinge_bend(e1, e2, h.rest);
         let mut c = Constraint {
             idx: [h.a, h.b, h.c],
             grad: [ga, -(ga + gc), gc],

@@ -26,7 +26,7 @@ pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
 use crate::species::Species;
-use elements::{Constraint, constraints, wrap_angle};
+use elements::{Constraint, constraints, raw_values, wrap_angle};
 use glam::Vec2;
 use implicit::Solver;
 use network::{
@@ -66,6 +66,16 @@ pub struct Body {
     bell_solver: Solver,
     tentacle_solver: Solver,
     scratch: Vec<Vec2>,
+    /// The elements at the predicted positions, the bell's and the tentacles', kept
+    /// between steps so that a step allocates nothing.
+    split: Split,
+}
+
+/// A step's elements, sorted by what they join: the bell alone, or a tentacle.
+#[derive(Clone, Default)]
+struct Split {
+    bell: Vec<Constraint>,
+    tentacles: Vec<Constraint>,
 }
 
 impl Body {
@@ -126,6 +136,7 @@ impl Body {
             scratch,
             bell_solver,
             tentacle_solver,
+            split: Split::default(),
         }
     }
 
@@ -189,20 +200,41 @@ impl Body {
         forces: &mut [Vec2],
         slip: &mut [Vec2],
     ) {
+        let mut split = std::mem::take(&mut self.split);
+        self.implicit_forces_split(&mut split, predicted, dt, mass_over_dt2, forces, slip);
+        self.split = split;
+    }
+
+    /// [`Self::implicit_forces`] with the elements sorted into `split`'s buffers, which
+    /// are kept from step to step.
+    fn implicit_forces_split(
+        &mut self,
+        split: &mut Split,
+        predicted: &[Vec2],
+        dt: f32,
+        mass_over_dt2: &[f32],
+        forces: &mut [Vec2],
+        slip: &mut [Vec2],
+    ) {
         let bell_len = self.bell.end;
         let damping = self.damping_time / dt;
-        let with_rates = |c: &mut Constraint, before: f32| c.change = wrap_angle(c.raw - before);
-        let mut all: Vec<Constraint> = constraints(self, predicted).collect();
-        if damping > 0.0 {
-            for (c, before) in all.iter_mut().zip(constraints(self, &self.points)) {
-                with_rates(c, before.raw);
+        let Split { bell, tentacles } = split;
+        bell.clear();
+        tentacles.clear();
+        let before = raw_values(self, &self.points);
+        let before = before.map(|raw| (damping > 0.0).then_some(raw));
+        for (mut c, before) in constraints(self, predicted).zip(before) {
+            if let Some(before) = before {
+                c.change = wrap_angle(c.raw - before);
+            }
+            if c.idx[..c.count].iter().all(|&i| i < bell_len) {
+                bell.push(c);
+            } else {
+                tentacles.push(c);
             }
         }
-        let (bell, mut tentacles): (Vec<Constraint>, Vec<Constraint>) = all
-            .into_iter()
-            .partition(|c| c.idx[..c.count].iter().all(|&i| i < bell_len));
         // The tentacles move with the bell held where it is predicted to be.
-        for c in &mut tentacles {
+        for c in tentacles.iter_mut() {
             for k in 0..c.count {
                 if c.idx[k] < bell_len {
                     c.grad[k] = Vec2::ZERO;
@@ -210,11 +242,11 @@ impl Body {
             }
         }
         if self.bell_solver.rhs.is_empty() {
-            self.bell_solver.prepare(&bell);
-            self.tentacle_solver.prepare(&tentacles);
+            self.bell_solver.prepare(bell);
+            self.tentacle_solver.prepare(tentacles);
         }
         self.bell_solver
-            .solve_each(&bell, |i| mass_over_dt2[i], damping, forces);
+            .solve_each(bell, |i| mass_over_dt2[i], damping, forces);
         slip.iter_mut().for_each(|s| *s = Vec2::ZERO);
         if tentacles.is_empty() {
             return;
@@ -230,7 +262,7 @@ impl Body {
             if rings { d.min(mass_over_dt2[i]) } else { d }
         };
         self.tentacle_solver.solve_each(
-            &tentacles,
+            tentacles,
             |i| diagonal(drag[i], i),
             damping,
             &mut self.scratch,
