@@ -2,7 +2,6 @@
 //! distance swum, the time and the jellyfish's pose.
 
 use crate::plugin::swimming::Pose;
-use crate::shape::packed;
 use crate::sim::cycle::{CycleCache, Reach};
 use crate::sim::guides::{GUIDE_NODES, THIN_NODES, Trail};
 use crate::sim::{SliceSim, SliceView};
@@ -178,12 +177,12 @@ impl Snapshot {
         self.oral_trail.extend_from_slice(oral);
     }
 
-    /// The fringe's trail thinned to `guides` guides and rounded to halves, as a far
-    /// jellyfish draws it (`render::recorded::drawn_view`); no oral trail, which a far
-    /// jellyfish does not draw.
-    pub fn set_thin_trail(&mut self, fringe: &[Vec3], guides: usize) {
-        Trail::new(fringe).thin_into(guides, &mut self.trail);
-        packed::round_to_halves(&mut self.trail);
+    /// The fringe's trail as a far jellyfish draws it (`render::recorded::drawn_view`):
+    /// `thin`, already thinned and rounded to halves (`TentacleGuides::thin_trail`); no
+    /// oral trail, which a far jellyfish does not draw.
+    pub fn set_thin_trail(&mut self, thin: &[Vec3]) {
+        self.trail.clear();
+        self.trail.extend_from_slice(thin);
         self.thin_trail = true;
         self.oral_trail.clear();
     }

@@ -169,7 +169,7 @@ impl Step<'_> {
                 let (before, surge) = (motion.pose, stroke.swim - motion.swum);
                 self.travel.step(&stroke, motion);
                 stepped += stroke.step;
-                let trail = guides.as_deref_mut().map(|guides| {
+                if let Some(guides) = guides.as_deref_mut() {
                     let shape = StepShape {
                         bell: &cycle.bell,
                         tentacles: [&cycle.tentacles[0], &cycle.tentacles[1]],
@@ -186,19 +186,19 @@ impl Step<'_> {
                         &self.guide_frame(&stroke, surge, before, motion, shape),
                         Some(mean),
                     );
-                    (guides.offsets(), guides.oral_offsets())
-                });
+                }
                 let (time, swim) = (clock.time(), replay.swim as f32);
                 // A step that fades from the last tier's shape is drawn as a shape of its
                 // own, whole trail and all; any other, only what it draws, read in place.
                 let fading = history.fading();
+                let far_guides = packed::far_guides_of(stroke.species);
                 history.record(clock, frame, motion.pose, |s| {
                     s.copy_frame(&replay.cache, replay.index(), time, swim);
-                    let (fringe, oral) = trail.unwrap_or_default();
-                    if fading {
-                        s.set_trail(fringe, oral);
-                    } else {
-                        s.set_thin_trail(fringe, packed::far_guides_of(stroke.species));
+                    match guides.as_deref_mut() {
+                        Some(g) if fading => s.set_trail(g.offsets(), g.oral_offsets()),
+                        Some(g) => s.set_thin_trail(g.thin_trail(far_guides)),
+                        None if fading => s.set_trail(&[], &[]),
+                        None => s.set_thin_trail(&[]),
                     }
                 });
                 if stroke_begins(clock, resting) {

@@ -12,8 +12,9 @@
 use super::Pose;
 use super::guide_frame::{GuideFrame, carrying, relative_water, water_along};
 use super::oral_guides::OralGuides;
+use crate::shape::packed;
 use crate::shape::tentacles::guide_reference;
-use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid};
+use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid, Trail};
 use bevy::prelude::*;
 
 /// A jellyfish's guide chains: where its fringe trails in the water around it. Read only;
@@ -33,6 +34,12 @@ pub struct TentacleGuides {
     length: f32,
     /// Steps since a far jellyfish's trailing was last worked out.
     since_refresh: u32,
+    /// The fringe's trail as a far jellyfish draws it (`Trail::thin_into`, rounded to
+    /// halves), for `thin_guides` guides; `None` once the chains have moved since. A far
+    /// jellyfish's trail changes only when its trailing is worked out again, a few times a
+    /// second, while every step records it.
+    thin: Vec<Vec3>,
+    thin_guides: Option<usize>,
 }
 
 /// A far jellyfish works out its steady trailing about this often, s: the water around it
@@ -91,6 +98,18 @@ impl TentacleGuides {
             .map(|(q, d)| *q + *d)
     }
 
+    /// The fringe's trail thinned to `guides` guides and rounded to halves, as a far
+    /// jellyfish draws it (`Snapshot::set_thin_trail`): worked out again only after the
+    /// chains have moved.
+    pub(crate) fn thin_trail(&mut self, guides: usize) -> &[Vec3] {
+        if self.thin_guides != Some(guides) {
+            Trail::new(self.chains.offsets()).thin_into(guides, &mut self.thin);
+            packed::round_to_halves(&mut self.thin);
+            self.thin_guides = Some(guides);
+        }
+        &self.thin
+    }
+
     /// Steps the guides by one slice step: live (the filament's dynamics) or, for a
     /// replayed far jellyfish towed at `steady` m/s on average, its steady trailing.
     pub(crate) fn step(&mut self, f: &GuideFrame, steady: Option<f32>) {
@@ -98,6 +117,7 @@ impl TentacleGuides {
         if guides != self.chains.guides() || f.species.tentacle_length != self.length {
             self.chains = GuideChains::new(guides);
             self.length = f.species.tentacle_length;
+            self.thin_guides = None;
         }
         self.oral.fit(f.species);
         if guides == 0 && self.oral.tubes() == 0 {
@@ -107,6 +127,7 @@ impl TentacleGuides {
         let towing = (f.surge / f.dt).max(0.0);
         match steady {
             None => {
+                self.thin_guides = None;
                 // The body turned in the step; the water holds the nodes where they were.
                 let turn = (f.before.rotation.inverse() * f.after.rotation).normalize();
                 self.chains.turn_frame(turn);
@@ -143,6 +164,7 @@ impl TentacleGuides {
             return;
         }
         self.since_refresh = 0;
+        self.thin_guides = None;
         let s = f.species;
         let guides = self.chains.guides();
         // Where the species hangs each guide's middle at rest, about the bell's centroid.
@@ -184,6 +206,7 @@ impl TentacleGuides {
     /// A game moved the jellyfish from `before` to `after` (poses of the newest step):
     /// the fringe stays in the water and is dragged after it.
     pub(crate) fn moved(&mut self, before: Pose, after: Pose, scale: Vec3) {
+        self.thin_guides = None;
         let inverse = after.rotation.inverse();
         let to_body = |y: Vec3| {
             let world = before.position + before.rotation * (scale * y);
