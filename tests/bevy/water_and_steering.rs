@@ -6,7 +6,8 @@ use crate::common::app::Headless;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    AmbientWater, JellyfishSlice, Resting, Steering, SwimMotion, TankWater,
+    AmbientWater, DetailLevels, JellyfishSettings, JellyfishSlice, Resting, Steering, SwimMotion,
+    TankWater,
 };
 use bevy_jellyfish::{Jellyfish, Species};
 use std::time::Duration;
@@ -70,6 +71,65 @@ fn a_resting_jellyfish_drifts_with_a_uniform_current() {
     );
     let sim = app.world().get::<JellyfishSlice>(e).unwrap().sim().unwrap();
     assert!(sim.resting() && sim.phase() == 0.0, "the stroke is held");
+}
+
+/// Where a jellyfish resting in a shear current is after `seconds`, at `fps` frames a
+/// second, near (its own slice) or far (its species' replayed cycle).
+fn drift_in_a_shear(fps: u32, near: bool, seconds: u32) -> Transform {
+    let mut app = Headless {
+        settings: JellyfishSettings {
+            mesh_resolution_scale: 0.25,
+            detail: DetailLevels {
+                near: near as usize,
+                mid: 0,
+                ..default()
+            },
+            ..default()
+        },
+        frame: Duration::from_secs(1) / fps,
+        ..default()
+    }
+    .build(|_| {});
+    app.insert_resource(AmbientWater::from_fn(|p, _| {
+        Vec3::new(0.3 + 0.2 * p.y, 0.0, 0.1 * p.x)
+    }));
+    let e = spawn(&mut app, &species(), Vec3::new(0.0, 0.5, 0.0), Resting);
+    // The clock's first update has no delta.
+    for _ in 0..=fps * seconds {
+        app.update();
+    }
+    *app.world().get::<Transform>(e).unwrap()
+}
+
+#[test]
+fn a_far_jellyfish_drifts_as_a_near_one_and_alike_at_any_frame_rate() {
+    // A far jellyfish reads the water four times a second of its steps and holds it
+    // between: a whole number of its own steps, so its path is the same at any frame rate,
+    // and close to a near one's, which reads it every step.
+    let (slow, quick) = (
+        drift_in_a_shear(30, false, 3),
+        drift_in_a_shear(90, false, 3),
+    );
+    assert_eq!(
+        slow.translation.to_array().map(f32::to_bits),
+        quick.translation.to_array().map(f32::to_bits),
+        "{slow:?} against {quick:?}"
+    );
+    assert_eq!(slow.rotation, quick.rotation);
+    let near = drift_in_a_shear(30, true, 3);
+    let start = Vec3::new(0.0, 0.5, 0.0);
+    let (far_drift, near_drift) = (
+        slow.translation.distance(start),
+        near.translation.distance(start),
+    );
+    let apart = slow.translation.distance(near.translation);
+    assert!(near_drift > 0.5, "the near one drifted {near_drift}");
+    assert!(
+        apart < 0.02 * near_drift,
+        "far drifted {far_drift} to {}, near {near_drift} to {}: {apart} apart",
+        slow.translation,
+        near.translation
+    );
 }
 
 #[test]

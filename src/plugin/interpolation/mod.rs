@@ -57,6 +57,8 @@ fn write_transforms(
                     guides.moved(motion.pose, moved, transform.scale);
                 }
                 motion.pose = moved;
+                // Moved elsewhere: the water a far jellyfish held is not where it is now.
+                motion.held_water = None;
             }
             let Some(pose) = history.shown_pose() else {
                 return;

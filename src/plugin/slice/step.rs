@@ -167,7 +167,7 @@ impl Step<'_> {
                     behind: clock.added() - clock.time(),
                 };
                 let (before, surge) = (motion.pose, stroke.swim - motion.swum);
-                self.travel.step(&stroke, motion);
+                self.travel.step_far(&stroke, motion);
                 stepped += stroke.step;
                 if let Some(guides) = guides.as_deref_mut() {
                     let shape = StepShape {

@@ -9,9 +9,9 @@
 //! line. A far jellyfish, which replays its cycle, shows the steady trailing of the water
 //! at its guides, towed at its recorded mean speed.
 
-use super::Pose;
 use super::guide_frame::{GuideFrame, carrying, relative_water, water_along};
 use super::oral_guides::OralGuides;
+use super::{FAR_REFRESH, Pose};
 use crate::shape::packed;
 use crate::shape::tentacles::guide_reference;
 use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid, Trail};
@@ -41,10 +41,6 @@ pub struct TentacleGuides {
     thin: Vec<Vec3>,
     thin_guides: Option<usize>,
 }
-
-/// A far jellyfish works out its steady trailing about this often, s: the water around it
-/// changes over seconds, and it is a few pixels.
-const FAR_REFRESH: f32 = 0.25;
 
 impl TentacleGuides {
     /// Guides around the margin (0: the fringe follows the slice alone).

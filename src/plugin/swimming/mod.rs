@@ -53,7 +53,14 @@ pub struct SwimMotion {
     /// What the plugin last wrote into the `Transform`, to see a game's own edits.
     #[reflect(ignore)]
     pub(crate) written: Option<Transform>,
+    /// The water a far jellyfish read last, while it holds it (`Travel::step_far`).
+    #[reflect(ignore)]
+    pub(crate) held_water: Option<travel::HeldWater>,
 }
+
+/// A far jellyfish works out the water around it about this often, s: its trailing and
+/// its drift. The water around it changes over seconds, and it is a few pixels.
+pub(crate) const FAR_REFRESH: f32 = 0.25;
 
 /// A jellyfish with this holds its stroke: it drifts with the water, its bell at rest,
 /// and resumes the stroke where it stopped when the component goes.

@@ -2,7 +2,7 @@
 //! its vorticity, and the steering turn while the bell contracts.
 
 use super::steering::Steering;
-use super::{Pose, SwimMotion};
+use super::{FAR_REFRESH, Pose, SwimMotion};
 use crate::plugin::water::AmbientWater;
 use crate::species::Species;
 use bevy::prelude::*;
@@ -30,13 +30,64 @@ pub(crate) struct Travel<'a> {
     pub steering: Option<&'a Steering>,
 }
 
+/// What a far jellyfish last read of the water around it, held for [`FAR_REFRESH`]
+/// seconds of its steps: each read is seven samples of the water (the current and, by
+/// central differences, its vorticity), and ten thousand far jellyfish took them every
+/// step of a stroke whose water changes over seconds.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct HeldWater {
+    current: Vec3,
+    vorticity: Vec3,
+    /// Steps it is held for yet.
+    steps_left: u32,
+}
+
 impl Travel<'_> {
-    /// Moves `motion` by one slice step.
+    /// Moves `motion` by one slice step, the water read after it.
     pub fn step(&self, stroke: &Stroke, motion: &mut SwimMotion) {
-        let species = stroke.species;
-        let dt = stroke.step;
+        motion.held_water = None;
+        let (current, vorticity) = self.read_water(stroke, motion);
+        self.advance(stroke, motion, current, vorticity);
+    }
+
+    /// Moves a far jellyfish's `motion` by one step of its replayed stroke, with the water
+    /// it read at most [`FAR_REFRESH`] seconds of steps ago (a whole number of steps, so
+    /// the same whatever the frames).
+    pub fn step_far(&self, stroke: &Stroke, motion: &mut SwimMotion) {
+        let held = match motion.held_water {
+            Some(held) if held.steps_left > 0 => HeldWater {
+                steps_left: held.steps_left - 1,
+                ..held
+            },
+            _ => {
+                let (current, vorticity) = self.read_water(stroke, motion);
+                let steps = (FAR_REFRESH / stroke.step.max(1e-6)).ceil().clamp(1.0, 1e3) as u32;
+                HeldWater {
+                    current,
+                    vorticity,
+                    steps_left: steps - 1,
+                }
+            }
+        };
+        motion.held_water = Some(held);
+        self.advance(stroke, motion, held.current, held.vorticity);
+    }
+
+    /// The water's current and vorticity where the jellyfish is, when the step ends.
+    fn read_water(&self, stroke: &Stroke, motion: &SwimMotion) -> (Vec3, Vec3) {
         // The water is read when the step ends, whatever the frame.
         let now = self.now - stroke.behind;
+        let position = motion.pose.position;
+        let size = stroke.species.diameter * self.scale.max_element();
+        let vorticity = self.water.0.vorticity(position, now, size);
+        let current = self.water.velocity(position, now);
+        (current, vorticity)
+    }
+
+    /// Moves `motion` by one step in water of `current` and `vorticity`.
+    fn advance(&self, stroke: &Stroke, motion: &mut SwimMotion, current: Vec3, vorticity: Vec3) {
+        let species = stroke.species;
+        let dt = stroke.step;
         let surge = stroke.swim - motion.swum;
         motion.swum = stroke.swim;
         let Pose {
@@ -44,8 +95,6 @@ impl Travel<'_> {
             mut rotation,
         } = motion.pose;
         // A small body in a shear spins with half the water's vorticity.
-        let size = species.diameter * self.scale.max_element();
-        let vorticity = self.water.0.vorticity(position, now, size);
         if vorticity.is_finite() && vorticity != Vec3::ZERO {
             rotation = (Quat::from_scaled_axis(0.5 * vorticity * dt) * rotation).normalize();
         }
@@ -55,7 +104,6 @@ impl Travel<'_> {
             rotation = steering.turn(rotation, position, surge / species.diameter, contracting);
         }
         let before = position;
-        let current = self.water.velocity(position, now);
         let current = if current.is_finite() {
             current
         } else {
