@@ -98,6 +98,8 @@ fn drift_in_a_shear(fps: u32, near: bool, seconds: u32) -> Transform {
     for _ in 0..=fps * seconds {
         app.update();
     }
+    let tier = app.world().get::<JellyfishSlice>(e).unwrap().tier();
+    assert_eq!(tier, if near { Tier::Near } else { Tier::Far });
     *app.world().get::<Transform>(e).unwrap()
 }
 
