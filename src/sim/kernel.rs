@@ -39,6 +39,22 @@ pub(crate) struct Stencil {
 }
 
 impl Stencil {
+    /// Locates a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array of
+    /// faces (row-major), the kernel stretched `stretch` times (see the module), in place:
+    /// a step locates every point of the body, and a stencil built and then copied was
+    /// read back before its own stores had landed.
+    pub(crate) fn locate(
+        &mut self,
+        kernel: Kernel,
+        (gx, gy): (f32, f32),
+        (nx, ny): (usize, usize),
+        stretch: f32,
+    ) {
+        taps_into(&mut self.x, kernel, gx, nx, stretch);
+        taps_into(&mut self.y, kernel, gy, ny, stretch);
+        self.row = nx;
+    }
+
     /// `(face index, weight)` pairs.
     #[cfg(test)]
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
@@ -158,24 +174,6 @@ fn taps_into(t: &mut Taps, kernel: Kernel, g: f32, count: usize, stretch: f32) {
                 t.weight[k] *= a + b * d;
             }
         }
-    }
-}
-
-impl Stencil {
-    /// Locates a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array of
-    /// faces (row-major), the kernel stretched `stretch` times (see the module), in place:
-    /// a step locates every point of the body, and a stencil built and then copied was
-    /// read back before its own stores had landed.
-    pub(crate) fn locate(
-        &mut self,
-        kernel: Kernel,
-        (gx, gy): (f32, f32),
-        (nx, ny): (usize, usize),
-        stretch: f32,
-    ) {
-        taps_into(&mut self.x, kernel, gx, nx, stretch);
-        taps_into(&mut self.y, kernel, gy, ny, stretch);
-        self.row = nx;
     }
 }
 

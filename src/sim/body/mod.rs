@@ -221,10 +221,12 @@ impl Body {
         let Split { bell, tentacles } = split;
         bell.clear();
         tentacles.clear();
-        let before = raw_values(self, &self.points);
-        let before = before.map(|raw| (damping > 0.0).then_some(raw));
-        for (mut c, before) in constraints(self, predicted).zip(before) {
-            if let Some(before) = before {
+        // The strains before the step, in the same order, read only for the viscosity.
+        let mut before = raw_values(self, &self.points);
+        for mut c in constraints(self, predicted) {
+            if damping > 0.0
+                && let Some(before) = before.next()
+            {
                 c.change = wrap_angle(c.raw - before);
             }
             if c.idx[..c.count].iter().all(|&i| i < bell_len) {
@@ -233,6 +235,7 @@ impl Body {
                 tentacles.push(c);
             }
         }
+        drop(before);
         // The tentacles move with the bell held where it is predicted to be.
         for c in tentacles.iter_mut() {
             for k in 0..c.count {
