@@ -7,7 +7,7 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     AmbientWater, DetailLevels, JellyfishSettings, JellyfishSlice, Resting, Steering, SwimMotion,
-    TankWater,
+    TankWater, Tier,
 };
 use bevy_jellyfish::{Jellyfish, Species};
 use std::time::Duration;
