@@ -122,7 +122,7 @@ pub fn run(
     let (seen, all) = seen(&mut app);
     println!("in view: {seen} of {all} meshed in the last frame");
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
-    println!("tank water: {:.2} ms per frame (one thread)", water / n);
+    println!("tank water: {:.2} ms of wall time per frame", water / n);
     println!("state hash: {:016x}", state_hash(&mut app));
     if burst > 0 {
         crate::burst::edit(&mut app, p99, fps)?;

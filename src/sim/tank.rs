@@ -4,7 +4,8 @@
 //! One step, Stam's recipe on cell-centred velocities: apply the pushes gathered since the
 //! last step, advect (semi-Lagrangian), let the water come to rest a little, and project
 //! (Gauss–Seidel on the pressure, closed free-slip walls). Pushes are applied in the order
-//! they came, so the same pushes give the same water.
+//! they came, so the same pushes give the same water; a crowded tank's pushes can be
+//! applied in slabs side by side ([`TankFluid::push_slabs`]), to the same bits.
 
 use super::trilinear::Trilinear;
 use glam::{UVec3, Vec3};
@@ -41,6 +42,93 @@ pub(crate) struct Impulse {
     pub radius: f32,
     /// Velocity given at the centre.
     pub velocity: Vec3,
+}
+
+/// What a slab of pushes needs to know of the tank's grid.
+#[derive(Clone, Copy, Debug)]
+struct Slab {
+    min: Vec3,
+    cell: f32,
+    size: UVec3,
+}
+
+impl Slab {
+    fn of(tank: &TankFluid) -> Self {
+        Self {
+            min: tank.min,
+            cell: tank.cell,
+            size: tank.size,
+        }
+    }
+
+    fn centre(&self, i: i64, j: i64, k: i64) -> Vec3 {
+        self.min + (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * self.cell
+    }
+}
+
+/// The tank's pending pushes over one slab of its z-planes ([`TankFluid::push_slabs`]).
+#[derive(Debug)]
+pub struct PushSlab<'a> {
+    tank: Slab,
+    /// The slab's first z-plane.
+    first: i64,
+    /// The slab's cells, x fastest, then y, then z.
+    velocity: &'a mut [Vec3],
+    pending: &'a [Impulse],
+}
+
+impl PushSlab<'_> {
+    /// Applies every pending push to the slab's cells, in the order they came.
+    pub fn apply(self) {
+        let Self {
+            tank,
+            first,
+            velocity,
+            pending,
+        } = self;
+        let s = tank.size.as_i64vec3();
+        let last = first + (velocity.len() as i64 / (s.x * s.y)) - 1;
+        for imp in pending {
+            let reach = (ceil_to_i64(imp.radius / tank.cell) + 1).max(1);
+            let c = ((imp.at - tank.min) / tank.cell)
+                .to_array()
+                .map(floor_to_i32);
+            let cells =
+                |c: i32, lo: i64, hi: i64| (c as i64 - reach).max(lo)..=(c as i64 + reach).min(hi);
+            // Surely outside (a squared distance beyond it): most of the cube around the
+            // ball, skipped row by row and then cell by cell before the root. Each skip is
+            // exact: such a cell fails `d < 1` too.
+            let outside = imp.radius * imp.radius * 1.0001;
+            let x = (imp.at.x - tank.min.x) / tank.cell - 0.5;
+            for k in cells(c[2], first, last) {
+                for j in cells(c[1], 0, s.y - 1) {
+                    let off = tank.centre(0, j, k) - imp.at;
+                    let across = off.y * off.y + off.z * off.z;
+                    if across > outside {
+                        continue;
+                    }
+                    // Cells a cell beyond the ball's chord along this row are outside too.
+                    let half = (outside - across).sqrt() / tank.cell + 1.0;
+                    let along = cells(c[0], 0, s.x - 1);
+                    let first_i = (*along.start()).max(floor_not_below_zero(x - half));
+                    let last_i = (*along.end()).min(ceil_to_i64(x + half));
+                    let row = (((k - first) * s.y + j) * s.x) as usize;
+                    for i in first_i..=last_i {
+                        let centre = tank.centre(i, j, k);
+                        if centre.distance_squared(imp.at) > outside {
+                            continue;
+                        }
+                        let d = centre.distance(imp.at) / imp.radius;
+                        if d < 1.0 {
+                            let w = (1.0 - d * d).powi(2);
+                            let v = &mut velocity[row + i as usize];
+                            *v += (imp.velocity - *v) * w;
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl TankFluid {
@@ -105,10 +193,7 @@ impl TankFluid {
             return;
         }
         self.push();
-        self.advect(dt);
-        self.come_to_rest(dt);
-        self.walls();
-        self.project();
+        self.step_pushed(dt);
     }
 
     fn index(&self, i: u32, j: u32, k: u32) -> usize {
@@ -121,48 +206,42 @@ impl TankFluid {
 
     /// Applies the pending pushes, in the order they came.
     fn push(&mut self) {
-        let pending = std::mem::take(&mut self.pending);
-        let s = self.size.as_i64vec3();
-        for imp in &pending {
-            let reach = ((imp.radius / self.cell).ceil() as i64 + 1).max(1);
-            let c = ((imp.at - self.min) / self.cell).floor().as_ivec3();
-            let cells = |c: i32, n: i64| (c as i64 - reach).max(0)..=(c as i64 + reach).min(n - 1);
-            // Surely outside (a squared distance beyond it): most of the cube around the
-            // ball, skipped row by row and then cell by cell before the root. Each skip is
-            // exact: such a cell fails `d < 1` too.
-            let outside = imp.radius * imp.radius * 1.0001;
-            let x = (imp.at.x - self.min.x) / self.cell - 0.5;
-            for k in cells(c.z, s.z) {
-                for j in cells(c.y, s.y) {
-                    let off = self.centre(0, j as u32, k as u32) - imp.at;
-                    let across = off.y * off.y + off.z * off.z;
-                    if across > outside {
-                        continue;
-                    }
-                    // Cells a cell beyond the ball's chord along this row are outside too.
-                    let half = (outside - across).sqrt() / self.cell + 1.0;
-                    let along = cells(c.x, s.x);
-                    let first = (*along.start()).max((x - half).floor().max(0.0) as i64);
-                    let last = (*along.end()).min((x + half).ceil() as i64);
-                    for i in first..=last {
-                        let (i, j, k) = (i as u32, j as u32, k as u32);
-                        let centre = self.centre(i, j, k);
-                        if centre.distance_squared(imp.at) > outside {
-                            continue;
-                        }
-                        let d = centre.distance(imp.at) / imp.radius;
-                        if d < 1.0 {
-                            let w = (1.0 - d * d).powi(2);
-                            let idx = self.index(i, j, k);
-                            let v = &mut self.velocity[idx];
-                            *v += (imp.velocity - *v) * w;
-                        }
-                    }
-                }
-            }
-        }
-        self.pending = pending;
+        self.push_slabs(1).into_iter().for_each(PushSlab::apply);
         self.pending.clear();
+    }
+
+    /// The pending pushes cut into at most `parts` slabs of whole z-planes, to be applied
+    /// side by side ([`PushSlab::apply`]) before [`TankFluid::step_pushed`]. A cell lies in
+    /// one slab and takes its pushes there in the order they came, so the water is the
+    /// same, bit for bit, however many parts it is cut into.
+    pub fn push_slabs(&mut self, parts: usize) -> Vec<PushSlab<'_>> {
+        let plane = (self.size.x * self.size.y) as usize;
+        let planes = self.size.z as usize;
+        let per = planes.div_ceil(parts.clamp(1, planes.max(1)));
+        let (tank, pending) = (Slab::of(self), &self.pending);
+        self.velocity
+            .chunks_mut(per * plane)
+            .enumerate()
+            .map(|(n, velocity)| PushSlab {
+                tank,
+                first: (n * per) as i64,
+                velocity,
+                pending,
+            })
+            .collect()
+    }
+
+    /// The rest of a step whose pushes [`TankFluid::push_slabs`] applied: advection,
+    /// rest, projection.
+    pub fn step_pushed(&mut self, dt: f32) {
+        self.pending.clear();
+        if dt.is_nan() || dt <= 0.0 {
+            return;
+        }
+        self.advect(dt);
+        self.come_to_rest(dt);
+        self.walls();
+        self.project();
     }
 
     fn advect(&mut self, dt: f32) {
@@ -222,15 +301,7 @@ impl TankFluid {
         let h = self.cell;
         self.measure_divergence();
         self.pressure.iter_mut().for_each(|p| *p = 0.0);
-        for _ in 0..PRESSURE_SWEEPS {
-            let (p, div) = (&mut self.pressure, &self.divergence);
-            for_each_cell(self.size, |idx, near| {
-                let here = p[idx];
-                // Neumann: no pressure gradient through a wall.
-                let [l, r, d, u, b, f] = near.map(|n| n.map_or(here, |n| p[n]));
-                p[idx] = (l + r + d + u + b + f - h * h * div[idx]) / 6.0;
-            });
-        }
+        relax(&mut self.pressure, &self.divergence, self.size, h * h);
         let (p, v) = (&self.pressure, &mut self.velocity);
         for_each_cell(self.size, |idx, near| {
             let here = p[idx];
@@ -240,6 +311,83 @@ impl TankFluid {
         self.walls();
     }
 }
+
+// Floors and ceilings by truncation, the same integers as `floor`/`ceil` and a cast (each
+// a library call on x86-64's baseline, without SSE4.1): two for every row a push crosses.
+
+/// `v.floor() as i32`.
+fn floor_to_i32(v: f32) -> i32 {
+    let t = v as i32;
+    if (t as f32) > v {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// `v.floor().max(0.0) as i64`: truncation is the floor of what is not negative.
+fn floor_not_below_zero(v: f32) -> i64 {
+    if v > 0.0 { v as i64 } else { 0 }
+}
+
+/// `v.ceil() as i64`.
+fn ceil_to_i64(v: f32) -> i64 {
+    let t = v as i64;
+    if (t as f32) < v {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// Gauss–Seidel sweeps towards the pressure whose Laplacian is `div` (cells `h2 = h²`
+/// apart; Neumann walls). Each cell's update waits on its neighbour's just before it, so
+/// one sweep is a chain of dependent divisions; the sweeps run [`SWEEPS_IN_FLIGHT`] at a
+/// time instead, each a plane behind the one before and stepped cell by cell with it, so
+/// the processor works on several chains at once. Every cell still sees its neighbours as
+/// one sweep after another leaves them: the same pressure, bit for bit.
+fn relax(p: &mut [f32], div: &[f32], size: UVec3, h2: f32) {
+    let [sx, sy, sz] = [size.x, size.y, size.z].map(|n| n as usize);
+    let (dy, dz) = (sx, sx * sy);
+    let cell = |p: &mut [f32], i: usize, j: usize, k: usize| {
+        let idx = (k * sy + j) * sx + i;
+        let here = p[idx];
+        // Neumann: no pressure gradient through a wall.
+        let at = |ok: bool, n: usize| if ok { p[n] } else { here };
+        let l = at(i > 0, idx.wrapping_sub(1));
+        let r = at(i + 1 < sx, idx + 1);
+        let d = at(j > 0, idx.wrapping_sub(dy));
+        let u = at(j + 1 < sy, idx + dy);
+        let b = at(k > 0, idx.wrapping_sub(dz));
+        let f = at(k + 1 < sz, idx + dz);
+        p[idx] = (l + r + d + u + b + f - h2 * div[idx]) / 6.0;
+    };
+    let mut done = 0;
+    while done < PRESSURE_SWEEPS {
+        let flight = SWEEPS_IN_FLIGHT.min(PRESSURE_SWEEPS - done);
+        // Sweep q of the flight is at plane `t - q`: the earlier sweeps lead, and at each
+        // cell of a row go first, so a later one reads what they left.
+        for t in 0..sz + flight - 1 {
+            let planes = (0..flight).filter_map(|q| t.checked_sub(q).filter(|&k| k < sz));
+            let (mut ks, mut n) = ([0; SWEEPS_IN_FLIGHT], 0);
+            for k in planes {
+                ks[n] = k;
+                n += 1;
+            }
+            for j in 0..sy {
+                for i in 0..sx {
+                    for &k in &ks[..n] {
+                        cell(p, i, j, k);
+                    }
+                }
+            }
+        }
+        done += flight;
+    }
+}
+
+/// Pressure sweeps [`relax`] runs side by side.
+const SWEEPS_IN_FLIGHT: usize = 4;
 
 /// Visits every cell of a grid of `size` in memory order with its index and its six
 /// neighbours' (−x, +x, −y, +y, −z, +z; none past a wall). Inside, the neighbours are
@@ -352,6 +500,55 @@ mod tests {
         }
     }
 
+    /// Cut into slabs of z-planes and applied in any order, the pushes give the water
+    /// they give in one piece, bit for bit, and a whole step after them is `step`'s.
+    #[test]
+    fn pushes_in_slabs_are_the_pushes_in_one_piece() {
+        let stirred = || {
+            let mut t = tank();
+            let mut state = 11u32;
+            let mut next = || {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                (state >> 8) as f32 / (1 << 24) as f32
+            };
+            for _ in 0..400 {
+                let at = Vec3::new(next() * 9.0 - 4.5, next() * 9.0 - 0.5, next() * 9.0 - 4.5);
+                let velocity = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+                t.stir(at, 0.1 + 2.0 * next(), velocity);
+            }
+            t
+        };
+        let bits = |t: &TankFluid| -> Vec<[u32; 3]> {
+            t.velocity
+                .iter()
+                .map(|v| v.to_array().map(f32::to_bits))
+                .collect()
+        };
+        let mut whole = stirred();
+        whole.step(1.0 / 64.0);
+        let planes = whole.size.z as usize;
+        for parts in [1, 2, 3, 5, planes - 1, planes, planes + 7] {
+            let mut cut = stirred();
+            let mut slabs = cut.push_slabs(parts);
+            assert!(
+                slabs.len() <= parts,
+                "{} slabs for {parts} parts",
+                slabs.len()
+            );
+            // Last first: no slab leans on another.
+            slabs.reverse();
+            slabs.into_iter().for_each(PushSlab::apply);
+            cut.step_pushed(1.0 / 64.0);
+            assert!(cut.pending.is_empty());
+            assert!(bits(&cut) == bits(&whole), "{parts} parts differ");
+        }
+        let moved = whole.velocity.iter().filter(|v| **v != Vec3::ZERO).count();
+        assert!(
+            moved > whole.velocity.len() / 2,
+            "the pushes reach the water: {moved}"
+        );
+    }
+
     #[test]
     fn a_stir_moves_the_water_near_it_and_fades() {
         let mut t = tank();
@@ -402,6 +599,65 @@ mod tests {
         println!("rms divergence of a stir {before:.3} 1/s, projected {after:.3} 1/s");
         assert!(before > 0.02, "a stir is divergent: {before}");
         assert!(after < 0.4 * before, "projected {after}, before {before}");
+    }
+
+    /// The truncating floors and ceilings are the library's, from far below to far
+    /// above, at every quarter near zero and an ulp either side, and at the infinities.
+    #[test]
+    fn truncated_floors_and_ceilings_are_the_librarys() {
+        let mut values = vec![f32::INFINITY, f32::NEG_INFINITY, f32::NAN, 0.0, -0.0];
+        for q in -400..=400 {
+            let v = q as f32 * 0.25;
+            values.extend([v, v.next_up(), v.next_down()]);
+        }
+        for e in [10, 20, 31, 32, 40, 63, 64, 100] {
+            let v = 2f32.powi(e);
+            values.extend([
+                v,
+                -v,
+                v.next_up(),
+                -v.next_up(),
+                v.next_down(),
+                -v.next_down(),
+            ]);
+        }
+        for v in values {
+            assert_eq!(floor_to_i32(v), v.floor() as i32, "floor of {v}");
+            assert_eq!(
+                floor_not_below_zero(v),
+                v.floor().max(0.0) as i64,
+                "floor of {v}"
+            );
+            assert_eq!(ceil_to_i64(v), v.ceil() as i64, "ceil of {v}");
+        }
+    }
+
+    /// The sweeps in flight leave the pressure one sweep after another leaves it, bit for
+    /// bit, on grids thinner than the flight too.
+    #[test]
+    fn sweeps_in_flight_are_the_sweeps_one_after_another() {
+        for size in [
+            UVec3::new(19, 12, 14),
+            UVec3::new(5, 4, 3),
+            UVec3::new(3, 3, 1),
+        ] {
+            let n = (size.x * size.y * size.z) as usize;
+            let div: Vec<f32> = (0..n).map(|c| ((c * 7919) % 23) as f32 - 11.0).collect();
+            let h2 = 0.75f32 * 0.75;
+            let mut flight = vec![0.0; n];
+            relax(&mut flight, &div, size, h2);
+            let mut one = vec![0.0f32; n];
+            for _ in 0..PRESSURE_SWEEPS {
+                for_each_cell(size, |idx, near| {
+                    let here = one[idx];
+                    let [l, r, d, u, b, f] = near.map(|m| m.map_or(here, |m| one[m]));
+                    one[idx] = (l + r + d + u + b + f - h2 * div[idx]) / 6.0;
+                });
+            }
+            assert!(one.iter().any(|p| *p != 0.0));
+            let bits = |p: &[f32]| p.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&flight), bits(&one), "grid {size}");
+        }
     }
 
     #[test]
