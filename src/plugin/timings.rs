@@ -2,7 +2,7 @@
 
 use bevy::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Time and data accumulated by the parallel systems during a frame (atomics, so any
 /// thread adds); read and reset once a frame by the diagnostics.
@@ -18,6 +18,68 @@ pub(crate) struct JellyfishTimings {
     tier_changes: AtomicU64,
 }
 
+/// What a [`BatchClock`] times.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Spent {
+    Simulation,
+    Meshing,
+}
+
+/// Times one batch of a parallel system's jellyfish with few clock reads and atomic adds:
+/// the near and mid ones (a hundred or so) one by one, the far ones (thousands, each a
+/// microsecond or two, where two clock reads and two contended adds a jellyfish were a
+/// measurable share of the frame) together, as what the batch spent besides. Adds it all
+/// to the [`JellyfishTimings`] when the batch ends (dropped).
+pub(crate) struct BatchClock<'a> {
+    timings: &'a JellyfishTimings,
+    spent: Spent,
+    start: Instant,
+    /// Near and mid jellyfish's time in the batch.
+    live: [Duration; 2],
+}
+
+impl<'a> BatchClock<'a> {
+    pub fn new(timings: &'a JellyfishTimings, spent: Spent) -> Self {
+        Self {
+            timings,
+            spent,
+            start: Instant::now(),
+            live: [Duration::ZERO; 2],
+        }
+    }
+
+    /// Runs `work` for a jellyfish of tier `tier` (`Tier as usize`): timed alone if near
+    /// or mid.
+    pub fn time<R>(&mut self, tier: usize, work: impl FnOnce() -> R) -> R {
+        let Some(live) = self.live.get_mut(tier) else {
+            return work();
+        };
+        let start = Instant::now();
+        let result = work();
+        *live += start.elapsed();
+        result
+    }
+}
+
+impl Drop for BatchClock<'_> {
+    fn drop(&mut self) {
+        let total = self.start.elapsed();
+        let far = total.saturating_sub(self.live[0] + self.live[1]);
+        let t = self.timings;
+        let ns = |d: Duration| d.as_nanos() as u64;
+        let sum = match self.spent {
+            Spent::Simulation => &t.simulation_ns,
+            Spent::Meshing => &t.meshing_ns,
+        };
+        sum.fetch_add(ns(total), Ordering::Relaxed);
+        for (tier, d) in [self.live[0], self.live[1], far].into_iter().enumerate() {
+            if !d.is_zero() {
+                t.tier_ns[tier].fetch_add(ns(d), Ordering::Relaxed);
+            }
+        }
+    }
+}
+
 /// One frame's figures, taken out of [`JellyfishTimings`].
 pub(crate) struct FrameFigures {
     pub simulation_ms: f64,
@@ -30,21 +92,6 @@ pub(crate) struct FrameFigures {
 }
 
 impl JellyfishTimings {
-    /// Adds time spent stepping a jellyfish of tier `tier` (`Tier as usize`: the slices
-    /// import the timings, not the other way) this frame.
-    pub fn add_simulation(&self, tier: usize, d: Duration) {
-        let ns = d.as_nanos() as u64;
-        self.simulation_ns.fetch_add(ns, Ordering::Relaxed);
-        self.tier_ns[tier.min(2)].fetch_add(ns, Ordering::Relaxed);
-    }
-
-    /// Adds time spent meshing a jellyfish of tier `tier` this frame.
-    pub fn add_meshing_of(&self, tier: usize, d: Duration) {
-        let ns = d.as_nanos() as u64;
-        self.meshing_ns.fetch_add(ns, Ordering::Relaxed);
-        self.tier_ns[tier.min(2)].fetch_add(ns, Ordering::Relaxed);
-    }
-
     /// Adds time spent meshing this frame for all jellyfish together.
     pub fn add_meshing(&self, d: Duration) {
         self.meshing_ns

@@ -11,7 +11,7 @@ use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
 use crate::plugin::slice::Tier;
-use crate::plugin::timings::JellyfishTimings;
+use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
 use crate::shape::{self, SurfaceBuffers, packed};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
@@ -37,76 +37,99 @@ pub(super) fn build_buffers(
 ) {
     let frusta = active_frusta(&cameras);
     recorded.prune();
-    jellyfish
-        .par_iter_mut()
-        .for_each(|(slice, history, mut meshes, transform)| {
+    let clock = || BatchClock::new(&timings, Spent::Meshing);
+    jellyfish.par_iter_mut().for_each_init(
+        clock,
+        |clock, (slice, history, mut meshes, transform)| {
             if !slice.started() {
                 return;
             }
-            let start = Instant::now();
-            let meshes = &mut *meshes;
-            let Some((a, b, t)) = history.shown() else {
-                return;
-            };
-            let JellyfishMeshes {
-                blended,
-                packer,
-                block,
-                shared,
-                buffers,
-                trails,
-                ..
-            } = meshes;
-            // A far jellyfish shows its recorded step as it is: read in place, not copied.
-            let step = (slice.tier() == Tier::Far).then(|| shown_step(a, b, t));
-            let shown = match step {
-                Some(step) => step,
-                None => {
-                    blended.blend(a, b, t);
-                    &*blended
-                }
-            };
-            let bounds = slice_bounds(shown, &slice.species);
-            meshes.bounds = Some(bounds);
-            meshes.seen = seen(&frusta, &bounds, &transform.affine());
-            let templates = meshes.path == Some(SurfacePath::Templates);
-            // A template's slot is shaped once even unseen: it must never show another's.
-            if !(meshes.seen || templates && block.is_empty()) {
-                timings.add_meshing_of(slice.tier() as usize, start.elapsed());
-                return;
-            }
-            let res = settings.resolution(&slice.species);
-            let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, trails);
-            let (seed, time) = (slice.seed, shown.time as f32);
-            let step = step.and_then(|s| s.recorded.as_ref());
-            let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
-                let cycle = recorded.cycle(cache, &slice.species, res)?;
-                cycle.start(*index).map(|_| (cycle, *index))
+            let (frusta, recorded, settings) = (&frusta, &*recorded, &*settings);
+            clock.time(slice.tier() as usize, || {
+                shape_one(
+                    slice,
+                    history,
+                    &mut meshes,
+                    transform,
+                    frusta,
+                    recorded,
+                    settings,
+                )
             });
-            let built = if let Some(step) = recorded_step {
-                block.clear();
-                packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
-                *shared = Some(step);
-                Ok(())
-            } else if templates {
-                let mut packed = std::mem::take(block);
-                packed.clear();
-                let result = packer.pack(&view, &slice.species, res, seed, time, &mut packed);
-                // On an error the last frame stays, its shared step with it.
-                if result.is_ok() || block.is_empty() {
-                    *block = packed;
-                    *shared = None;
-                }
-                result
-            } else {
-                shape::build_at(buffers, &view, &slice.species, res, seed, time)
-                    .map(|()| meshes.dirty = true)
-            };
-            if let Err(e) = built {
-                warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}");
-            }
-            timings.add_meshing_of(slice.tier() as usize, start.elapsed());
-        });
+        },
+    );
+}
+
+/// One jellyfish's surface: blended (or its recorded step, if far), bounded, and built or
+/// packed if a camera sees it.
+fn shape_one(
+    slice: &JellyfishSlice,
+    history: &SliceHistory,
+    meshes: &mut JellyfishMeshes,
+    transform: &GlobalTransform,
+    frusta: &[Frustum],
+    recorded: &RecordedFrames,
+    settings: &JellyfishSettings,
+) {
+    let Some((a, b, t)) = history.shown() else {
+        return;
+    };
+    let JellyfishMeshes {
+        blended,
+        packer,
+        block,
+        shared,
+        buffers,
+        trails,
+        ..
+    } = meshes;
+    // A far jellyfish shows its recorded step as it is: read in place, not copied.
+    let step = (slice.tier() == Tier::Far).then(|| shown_step(a, b, t));
+    let shown = match step {
+        Some(step) => step,
+        None => {
+            blended.blend(a, b, t);
+            &*blended
+        }
+    };
+    let bounds = slice_bounds(shown, &slice.species);
+    meshes.bounds = Some(bounds);
+    meshes.seen = seen(frusta, &bounds, &transform.affine());
+    let templates = meshes.path == Some(SurfacePath::Templates);
+    // A template's slot is shaped once even unseen: it must never show another's.
+    if !(meshes.seen || templates && block.is_empty()) {
+        return;
+    }
+    let res = settings.resolution(&slice.species);
+    let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, trails);
+    let (seed, time) = (slice.seed, shown.time as f32);
+    let step = step.and_then(|s| s.recorded.as_ref());
+    let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
+        let cycle = recorded.cycle(cache, &slice.species, res)?;
+        cycle.start(*index).map(|_| (cycle, *index))
+    });
+    let built = if let Some(step) = recorded_step {
+        block.clear();
+        packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
+        *shared = Some(step);
+        Ok(())
+    } else if templates {
+        let mut packed = std::mem::take(block);
+        packed.clear();
+        let result = packer.pack(&view, &slice.species, res, seed, time, &mut packed);
+        // On an error the last frame stays, its shared step with it.
+        if result.is_ok() || block.is_empty() {
+            *block = packed;
+            *shared = None;
+        }
+        result
+    } else {
+        shape::build_at(buffers, &view, &slice.species, res, seed, time)
+            .map(|()| meshes.dirty = true)
+    };
+    if let Err(e) = built {
+        warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}");
+    }
 }
 
 /// The serial half: copy the buffers into the mesh assets (creating them the first time).

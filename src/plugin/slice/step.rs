@@ -13,12 +13,12 @@ use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::swimming::{
     GuideFrame, Pose, Resting, Steering, Stroke, SwimMotion, TentacleGuides, Travel,
 };
-use crate::plugin::timings::JellyfishTimings;
+use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
 use crate::plugin::water::AmbientWater;
 use crate::shape::packed;
 use crate::sim::clock::FixedClock;
+use bevy::ecs::batching::BatchingStrategy;
 use bevy::prelude::*;
-use std::time::Instant;
 
 /// One jellyfish as the stepping sees it.
 type Stepped = (
@@ -48,42 +48,55 @@ pub(super) fn step_slices(
     let (elapsed, before) = (time.elapsed(), time.elapsed() - time.delta());
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
-    jellyfish.par_iter_mut().for_each(
-        |(entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting)| {
+    let clock = || BatchClock::new(&timings, Spent::Simulation);
+    jellyfish
+        .par_iter_mut()
+        .batching_strategy(SMALL_BATCHES)
+        .for_each_init(
+        clock,
+        |clock, (entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting)| {
             let slice = &mut *slice;
-            // Started this frame and left near: its slice is built now.
-            if let Err(error) = slice.build_pending(&mut history, motion.pose) {
-                error!("jellyfish {entity}: its slice could not be built: {error}");
-            }
-            let Some(clock) = slice.clock() else {
-                return;
-            };
-            if frame > 0.0 {
-                let start = Instant::now();
-                let (at, added) = *slice.anchor.get_or_insert((before, clock.added()));
-                let until = added + elapsed.saturating_sub(at).as_secs_f64();
-                let travel = Travel {
-                    scale: transform.scale,
-                    water,
-                    now,
-                    steering,
+            clock.time(slice.tier as usize, || {
+                // Started this frame and left near: its slice is built now.
+                if let Err(error) = slice.build_pending(&mut history, motion.pose) {
+                    error!("jellyfish {entity}: its slice could not be built: {error}");
+                }
+                let Some(clock) = slice.clock() else {
+                    return;
                 };
-                let step = Step {
-                    entity,
-                    until,
-                    frame,
-                    resting,
-                    travel: &travel,
-                    events: &events,
-                };
-                step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
-                timings.add_simulation(slice.tier as usize, start.elapsed());
-            }
-            slice.show(&mut history);
-            slice.fresh = false;
+                if frame > 0.0 {
+                    let (at, added) = *slice.anchor.get_or_insert((before, clock.added()));
+                    let until = added + elapsed.saturating_sub(at).as_secs_f64();
+                    let travel = Travel {
+                        scale: transform.scale,
+                        water,
+                        now,
+                        steering,
+                    };
+                    let step = Step {
+                        entity,
+                        until,
+                        frame,
+                        resting,
+                        travel: &travel,
+                        events: &events,
+                    };
+                    step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
+                }
+                slice.show(&mut history);
+                slice.fresh = false;
+            });
         },
     );
 }
+
+/// The work of a frame lies mostly in a hundred near jellyfish among thousands of far
+/// ones, wherever they sit in the query: cut into a few batches per thread instead of
+/// one, a thread that finishes early takes another batch instead of waiting.
+pub(crate) const SMALL_BATCHES: BatchingStrategy = BatchingStrategy {
+    batch_size_limits: 1..usize::MAX,
+    batches_per_thread: 8,
+};
 
 /// One jellyfish's steps in one frame.
 struct Step<'a> {
