@@ -32,10 +32,11 @@ impl JellyfishDiagnostics {
     pub const NEAR_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/near_ms");
     /// Stepping and meshing the mid-tier jellyfish, ms.
     pub const MID_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mid_ms");
-    /// Replaying and meshing the far jellyfish, ms.
+    /// Replaying and meshing the far jellyfish, ms: what the parallel systems' batches
+    /// spent besides their near and mid jellyfish (timed together, not one by one).
     pub const FAR_MS: DiagnosticPath = DiagnosticPath::const_new("jellyfish/far_ms");
     /// Stepping the tank's water ([`TankWater`](super::TankWater)), all fixed ticks of the
-    /// frame, ms.
+    /// frame, ms of wall time.
     pub const WATER: DiagnosticPath = DiagnosticPath::const_new("jellyfish/water_ms");
     /// Bytes written into mesh assets this frame (what the renderer re-uploads), MB.
     pub const MESH_DATA: DiagnosticPath = DiagnosticPath::const_new("jellyfish/mesh_data_mb");
