@@ -444,6 +444,15 @@ mod tests {
         TankFluid::new(Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 8.0, 4.0), 0.5)
     }
 
+    /// Numbers in [0, 1) from `seed`, the same every run.
+    fn uniform(seed: u32) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1 << 24) as f32
+        }
+    }
+
     /// The pushes skip what is surely outside each ball, and nothing else: the water is
     /// the same, bit for bit, as from visiting the whole cube around it, for balls of
     /// every size, anywhere (across the walls and outside the tank too).
@@ -451,11 +460,7 @@ mod tests {
     fn pushes_reach_exactly_the_cells_in_their_balls() {
         let mut fast = tank();
         let mut every = tank();
-        let mut state = 7u32;
-        let mut next = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (state >> 8) as f32 / (1 << 24) as f32
-        };
+        let mut next = uniform(7);
         for _ in 0..300 {
             let at = Vec3::new(
                 next() * 10.0 - 5.0,
@@ -506,11 +511,7 @@ mod tests {
     fn pushes_in_slabs_are_the_pushes_in_one_piece() {
         let stirred = || {
             let mut t = tank();
-            let mut state = 11u32;
-            let mut next = || {
-                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-                (state >> 8) as f32 / (1 << 24) as f32
-            };
+            let mut next = uniform(11);
             for _ in 0..400 {
                 let at = Vec3::new(next() * 9.0 - 4.5, next() * 9.0 - 0.5, next() * 9.0 - 4.5);
                 let velocity = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
