@@ -37,25 +37,17 @@ pub(super) fn build_buffers(
 ) {
     let frusta = active_frusta(&cameras);
     recorded.prune();
-    let clock = || BatchClock::new(&timings, Spent::Meshing);
+    let (frusta, recorded, settings) = (&frusta[..], &*recorded, &*settings);
+    let batch = || BatchClock::new(&timings, Spent::Meshing);
     jellyfish.par_iter_mut().for_each_init(
-        clock,
-        |clock, (slice, history, mut meshes, transform)| {
-            if !slice.started() {
-                return;
+        batch,
+        |batch, (slice, history, mut meshes, transform)| {
+            if slice.started() {
+                batch.time(slice.tier() as usize, || {
+                    let at = (transform, frusta);
+                    shape_one(slice, history, &mut meshes, at, recorded, settings)
+                });
             }
-            let (frusta, recorded, settings) = (&frusta, &*recorded, &*settings);
-            clock.time(slice.tier() as usize, || {
-                shape_one(
-                    slice,
-                    history,
-                    &mut meshes,
-                    transform,
-                    frusta,
-                    recorded,
-                    settings,
-                )
-            });
         },
     );
 }
@@ -66,8 +58,7 @@ fn shape_one(
     slice: &JellyfishSlice,
     history: &SliceHistory,
     meshes: &mut JellyfishMeshes,
-    transform: &GlobalTransform,
-    frusta: &[Frustum],
+    (transform, frusta): (&GlobalTransform, &[Frustum]),
     recorded: &RecordedFrames,
     settings: &JellyfishSettings,
 ) {

@@ -19,6 +19,7 @@ use crate::shape::packed;
 use crate::sim::clock::FixedClock;
 use bevy::ecs::batching::BatchingStrategy;
 use bevy::prelude::*;
+use std::time::Duration;
 
 /// One jellyfish as the stepping sees it.
 type Stepped = (
@@ -32,6 +33,9 @@ type Stepped = (
     Has<Resting>,
 );
 
+/// The stepping query's item.
+type StepItem<'w, 's> = bevy::ecs::query::QueryItem<'w, 's, Stepped>;
+
 /// Adds the frame's time to every slice's clock; a slice takes the fixed steps of its
 /// own length that pays for (a far one plays them from its species' cycle), and after
 /// each one the jellyfish travels and the state is recorded for the frames to blend
@@ -44,50 +48,81 @@ pub(super) fn step_slices(
     timings: Res<JellyfishTimings>,
     events: Res<LifecycleQueue>,
 ) {
-    let (frame, now) = (time.delta_secs_f64(), time.elapsed_secs_f64());
-    let (elapsed, before) = (time.elapsed(), time.elapsed() - time.delta());
+    let at = FrameTime {
+        frame: time.delta_secs_f64(),
+        now: time.elapsed_secs_f64(),
+        elapsed: time.elapsed(),
+        before: time.elapsed() - time.delta(),
+    };
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
-    let clock = || BatchClock::new(&timings, Spent::Simulation);
+    let batch = || BatchClock::new(&timings, Spent::Simulation);
     jellyfish
         .par_iter_mut()
         .batching_strategy(SMALL_BATCHES)
-        .for_each_init(
-        clock,
-        |clock, (entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting)| {
-            let slice = &mut *slice;
-            clock.time(slice.tier as usize, || {
-                // Started this frame and left near: its slice is built now.
-                if let Err(error) = slice.build_pending(&mut history, motion.pose) {
-                    error!("jellyfish {entity}: its slice could not be built: {error}");
-                }
-                let Some(clock) = slice.clock() else {
-                    return;
-                };
-                if frame > 0.0 {
-                    let (at, added) = *slice.anchor.get_or_insert((before, clock.added()));
-                    let until = added + elapsed.saturating_sub(at).as_secs_f64();
-                    let travel = Travel {
-                        scale: transform.scale,
-                        water,
-                        now,
-                        steering,
-                    };
-                    let step = Step {
-                        entity,
-                        until,
-                        frame,
-                        resting,
-                        travel: &travel,
-                        events: &events,
-                    };
-                    step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
-                }
-                slice.show(&mut history);
-                slice.fresh = false;
+        .for_each_init(batch, |batch, item| {
+            let tier = item.1.tier as usize;
+            batch.time(tier, || {
+                step_one(item, &at, water, &events);
             });
-        },
-    );
+        });
+}
+
+/// The frame's virtual time, as every jellyfish's steps read it.
+#[derive(Clone, Copy)]
+struct FrameTime {
+    /// The frame's length, s.
+    frame: f64,
+    /// The virtual time at its end, s.
+    now: f64,
+    /// The same, and where the frame began.
+    elapsed: Duration,
+    before: Duration,
+}
+
+/// One jellyfish's frame: its slice built if it was left pending, the steps the frame
+/// pays for, and the time it shows.
+fn step_one(
+    (entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting): StepItem,
+    at: &FrameTime,
+    water: &AmbientWater,
+    events: &LifecycleQueue,
+) {
+    let FrameTime {
+        frame,
+        now,
+        elapsed,
+        before,
+    } = *at;
+    let slice = &mut *slice;
+    // Started this frame and left near: its slice is built now.
+    if let Err(error) = slice.build_pending(&mut history, motion.pose) {
+        error!("jellyfish {entity}: its slice could not be built: {error}");
+    }
+    let Some(clock) = slice.clock() else {
+        return;
+    };
+    if frame > 0.0 {
+        let (anchor, added) = *slice.anchor.get_or_insert((before, clock.added()));
+        let until = added + elapsed.saturating_sub(anchor).as_secs_f64();
+        let travel = Travel {
+            scale: transform.scale,
+            water,
+            now,
+            steering,
+        };
+        let step = Step {
+            entity,
+            until,
+            frame,
+            resting,
+            travel: &travel,
+            events,
+        };
+        step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
+    }
+    slice.show(&mut history);
+    slice.fresh = false;
 }
 
 /// The work of a frame lies mostly in a hundred near jellyfish among thousands of far
