@@ -1,0 +1,289 @@
+//! A coarse 3D stable-fluids grid over a box: the water of a whole tank, stirred by pushes
+//! and coming slowly to rest.
+//!
+//! One step, Stam's recipe on cell-centred velocities: apply the pushes gathered since the
+//! last step, advect (semi-Lagrangian), let the water come to rest a little, and project
+//! (Gauss–Seidel on the pressure, closed free-slip walls). Pushes are applied in the order
+//! they came, so the same pushes give the same water; a crowded tank's pushes can be
+//! applied in slabs side by side ([`TankFluid::push_slabs`], `pushes`), to the same bits; the
+//! pressure's sweeps are in `relax`.
+
+mod pushes;
+mod relax;
+
+pub use pushes::PushSlab;
+
+use super::trilinear::Trilinear;
+use glam::{UVec3, Vec3};
+use pushes::Impulse;
+use relax::{for_each_cell, relax};
+
+/// The tank's water: velocities at cell centres of a box.
+#[derive(Clone, Debug, Default)]
+pub struct TankFluid {
+    /// The tank's lower corner.
+    pub min: Vec3,
+    /// Cell size.
+    pub cell: f32,
+    /// Cells along x, y, z.
+    pub size: UVec3,
+    /// How quickly the water comes back to rest, 1/s.
+    pub damping: f32,
+    velocity: Vec<Vec3>,
+    scratch: Vec<Vec3>,
+    pressure: Vec<f32>,
+    divergence: Vec<f32>,
+    pending: Vec<Impulse>,
+}
+
+impl TankFluid {
+    /// Still water filling the box from `min` to `max` in cells of about `cell`.
+    pub fn new(min: Vec3, max: Vec3, cell: f32) -> Self {
+        let cell = cell.max(1e-3);
+        let size = ((max - min) / cell).ceil().max(Vec3::splat(3.0)).as_uvec3();
+        let count = (size.x * size.y * size.z) as usize;
+        Self {
+            min,
+            cell,
+            size,
+            damping: 0.15,
+            velocity: vec![Vec3::ZERO; count],
+            scratch: vec![Vec3::ZERO; count],
+            pressure: vec![0.0; count],
+            divergence: vec![0.0; count],
+            pending: Vec::new(),
+        }
+    }
+
+    /// Pushes the water at `at` within `radius` towards `velocity`; applied at the next
+    /// step. A non-finite or empty push is ignored.
+    pub fn stir(&mut self, at: Vec3, radius: f32, velocity: Vec3) {
+        if at.is_finite() && velocity.is_finite() && radius > 0.0 {
+            self.pending.push(Impulse {
+                at,
+                radius,
+                velocity,
+            });
+        }
+    }
+
+    /// The cell centres as a sampling grid.
+    pub(crate) fn grid(&self) -> Trilinear {
+        Trilinear {
+            origin: self.min + Vec3::splat(0.5 * self.cell),
+            spacing: self.cell,
+            size: self.size,
+        }
+    }
+
+    /// The velocity of every cell, x fastest, then y, then z; cell (i, j, k) is centred at
+    /// `min + ((i, j, k) + 0.5) · cell`.
+    pub fn velocities(&self) -> &[Vec3] {
+        &self.velocity
+    }
+
+    /// The water's velocity at a point (trilinear; held at the walls).
+    pub fn velocity_at(&self, point: Vec3) -> Vec3 {
+        self.grid().sample(&self.velocity, point)
+    }
+
+    /// Largest speed in the tank.
+    pub fn speed_max(&self) -> f32 {
+        self.velocity.iter().map(|v| v.length()).fold(0.0, f32::max)
+    }
+
+    /// One step of `dt` seconds: pushes, advection, rest, projection.
+    pub fn step(&mut self, dt: f32) {
+        if dt.is_nan() || dt <= 0.0 {
+            return;
+        }
+        self.push();
+        self.step_pushed(dt);
+    }
+
+    fn index(&self, i: u32, j: u32, k: u32) -> usize {
+        ((k * self.size.y + j) * self.size.x + i) as usize
+    }
+
+    fn centre(&self, i: u32, j: u32, k: u32) -> Vec3 {
+        self.min + (Vec3::new(i as f32, j as f32, k as f32) + 0.5) * self.cell
+    }
+
+    /// The rest of a step whose pushes [`TankFluid::push_slabs`] applied: advection,
+    /// rest, projection.
+    pub fn step_pushed(&mut self, dt: f32) {
+        self.pending.clear();
+        if dt.is_nan() || dt <= 0.0 {
+            return;
+        }
+        self.advect(dt);
+        self.come_to_rest(dt);
+        self.walls();
+        self.project();
+    }
+
+    fn advect(&mut self, dt: f32) {
+        let grid = self.grid();
+        let s = self.size;
+        for k in 0..s.z {
+            for j in 0..s.y {
+                for i in 0..s.x {
+                    let idx = self.index(i, j, k);
+                    let back = self.centre(i, j, k) - self.velocity[idx] * dt;
+                    self.scratch[idx] = grid.sample(&self.velocity, back);
+                }
+            }
+        }
+        std::mem::swap(&mut self.velocity, &mut self.scratch);
+    }
+
+    /// The water slows by `1 / (1 + damping·dt)`: implicit, so never past rest.
+    fn come_to_rest(&mut self, dt: f32) {
+        let keep = 1.0 / (1.0 + self.damping * dt);
+        self.velocity.iter_mut().for_each(|v| *v *= keep);
+    }
+
+    /// Closed, free-slip walls: no velocity through them.
+    fn walls(&mut self) {
+        let s = self.size;
+        let [sx, sy, sz] = [s.x, s.y, s.z].map(|n| n as usize);
+        for k in 0..sz {
+            for j in 0..sy {
+                let row = &mut self.velocity[(k * sy + j) * sx..][..sx];
+                row[0].x = 0.0;
+                row[sx - 1].x = 0.0;
+                if j == 0 || j == sy - 1 {
+                    row.iter_mut().for_each(|v| v.y = 0.0);
+                }
+                if k == 0 || k == sz - 1 {
+                    row.iter_mut().for_each(|v| v.z = 0.0);
+                }
+            }
+        }
+    }
+
+    /// The divergence of the velocity at every cell (central differences, no flow through
+    /// the walls), into `self.divergence`.
+    fn measure_divergence(&mut self) {
+        let h = self.cell;
+        let v = &self.velocity;
+        for_each_cell(self.size, |idx, [l, r, d, u, b, f]| {
+            let at = |n: Option<usize>| n.map_or(Vec3::ZERO, |n| v[n]);
+            self.divergence[idx] =
+                (at(r).x - at(l).x + at(u).y - at(d).y + at(f).z - at(b).z) / (2.0 * h);
+        });
+    }
+
+    /// Removes the divergent part: solves for the pressure and subtracts its gradient.
+    fn project(&mut self) {
+        let h = self.cell;
+        self.measure_divergence();
+        self.pressure.iter_mut().for_each(|p| *p = 0.0);
+        relax(&mut self.pressure, &self.divergence, self.size, h * h);
+        let (p, v) = (&self.pressure, &mut self.velocity);
+        for_each_cell(self.size, |idx, near| {
+            let here = p[idx];
+            let [l, r, d, u, b, f] = near.map(|n| n.map_or(here, |n| p[n]));
+            v[idx] -= Vec3::new(r - l, u - d, f - b) / (2.0 * h);
+        });
+        self.walls();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    pub(super) fn tank() -> TankFluid {
+        TankFluid::new(Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 8.0, 4.0), 0.5)
+    }
+
+    /// Numbers in [0, 1) from `seed`, the same every run.
+    pub(super) fn uniform(seed: u32) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1 << 24) as f32
+        }
+    }
+
+    #[test]
+    fn a_stir_moves_the_water_near_it_and_fades() {
+        let mut t = tank();
+        let at = Vec3::new(0.0, 4.0, 0.0);
+        t.stir(at, 1.0, Vec3::new(1.0, 0.0, 0.0));
+        t.step(1.0 / 64.0);
+        let near = t.velocity_at(at).x;
+        let far = t.velocity_at(Vec3::new(0.0, 4.0, 3.5)).length();
+        assert!(near > 0.3, "{near}");
+        assert!(far < 0.1 * near, "far {far}, near {near}");
+        for _ in 0..64 * 30 {
+            t.step(1.0 / 64.0);
+        }
+        assert!(t.speed_max() < 0.05 * near, "the water comes to rest");
+    }
+
+    #[test]
+    fn the_walls_hold_the_water_in() {
+        let mut t = tank();
+        t.stir(Vec3::new(3.8, 4.0, 0.0), 1.5, Vec3::new(2.0, 0.0, 0.0));
+        for _ in 0..10 {
+            t.step(1.0 / 64.0);
+        }
+        let s = t.size;
+        for k in 0..s.z {
+            for j in 0..s.y {
+                assert_eq!(t.velocity[t.index(s.x - 1, j, k)].x, 0.0);
+            }
+        }
+    }
+
+    /// Root-mean-square divergence over the tank, 1/s.
+    fn divergence_rms(t: &mut TankFluid) -> f32 {
+        t.measure_divergence();
+        let sum: f32 = t.divergence.iter().map(|d| d * d).sum();
+        (sum / t.divergence.len() as f32).sqrt()
+    }
+
+    #[test]
+    fn projection_takes_out_most_of_a_stirs_divergence() {
+        let mut t = tank();
+        t.stir(Vec3::new(0.5, 3.0, -0.5), 1.5, Vec3::new(1.0, 0.5, 0.0));
+        t.push();
+        t.walls();
+        let before = divergence_rms(&mut t);
+        t.project();
+        let after = divergence_rms(&mut t);
+        println!("rms divergence of a stir {before:.3} 1/s, projected {after:.3} 1/s");
+        assert!(before > 0.02, "a stir is divergent: {before}");
+        assert!(after < 0.4 * before, "projected {after}, before {before}");
+    }
+
+    #[test]
+    fn a_stir_mirrored_across_the_tank_gives_the_mirrored_water() {
+        let run = |sign: f32| {
+            let mut t = tank();
+            t.stir(
+                Vec3::new(sign * 1.2, 3.0, 0.7),
+                1.5,
+                Vec3::new(sign, 0.4, 0.2),
+            );
+            for _ in 0..20 {
+                t.step(1.0 / 64.0);
+            }
+            t
+        };
+        let (a, b) = (run(1.0), run(-1.0));
+        for p in [Vec3::new(1.0, 3.0, 0.5), Vec3::new(2.5, 4.0, -1.0)] {
+            let (va, vb) = (
+                a.velocity_at(p),
+                b.velocity_at(p * Vec3::new(-1.0, 1.0, 1.0)),
+            );
+            let mirrored = vb * Vec3::new(-1.0, 1.0, 1.0);
+            assert!(
+                (va - mirrored).length() < 1e-3 * (1.0 + va.length()),
+                "{va} against mirrored {mirrored}"
+            );
+        }
+    }
+}
