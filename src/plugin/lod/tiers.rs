@@ -7,7 +7,9 @@ use super::choose::{choose, screen_sizes};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::render::JellyfishMeshes;
 use crate::plugin::settings::JellyfishSettings;
-use crate::plugin::slice::{JellyfishSlice, Replay, SliceEdited, Tier, same, tier_species};
+use crate::plugin::slice::{
+    JellyfishSlice, LiveSlice, Replay, SliceEdited, Tier, same, tier_species,
+};
 use crate::plugin::swimming::SwimMotion;
 use crate::plugin::timings::JellyfishTimings;
 use crate::sim::clock::FixedClock;
@@ -25,6 +27,7 @@ type Detailed = (
     &'static mut SwimMotion,
     Option<&'static JellyfishMeshes>,
     &'static GlobalTransform,
+    Has<LiveSlice>,
 );
 
 /// Moves jellyfish between tiers: demotions at once, promotions (the costly way) up to
@@ -36,10 +39,12 @@ pub(super) fn change_tiers(
     mut caches: ResMut<CycleCaches>,
     mut edited: MessageReader<SliceEdited>,
     timings: Res<JellyfishTimings>,
+    mut commands: Commands,
 ) {
     // Drop cycles of species no jellyfish has any more (after edits).
     let mut distinct: Vec<&Arc<Species>> = Vec::new();
-    for (_, slice, ..) in &jellyfish {
+    for (entity, slice, .., live) in &jellyfish {
+        mark_live(&mut commands, entity, slice.tier, live);
         if !distinct.iter().any(|s| same(s, &slice.species)) {
             distinct.push(&slice.species);
         }
@@ -80,7 +85,7 @@ pub(super) fn change_tiers(
         &cameras,
         ranked
             .iter()
-            .map(|(e, slice, _, _, meshes, transform)| (e, slice, meshes, transform)),
+            .map(|(e, slice, _, _, meshes, transform, _)| (e, slice, meshes, transform)),
     );
     let mut changes: Vec<(Entity, Tier)> = choose(sizes, levels)
         .into_iter()
@@ -134,6 +139,22 @@ pub(super) fn change_tiers(
                 move_to(&mut slice, &mut history, &mut motion, *tier, cache.clone());
             }
         });
+    for (entity, slice, .., live) in jellyfish.iter_many(plan.keys()) {
+        mark_live(&mut commands, entity, slice.tier, live);
+    }
+}
+
+/// Marks a jellyfish at `tier` as a live slice or not ([`LiveSlice`]), where it is not.
+fn mark_live(commands: &mut Commands, entity: Entity, tier: Tier, live: bool) {
+    match (tier != Tier::Far, live) {
+        (true, false) => {
+            commands.entity(entity).try_insert(LiveSlice);
+        }
+        (false, true) => {
+            commands.entity(entity).try_remove::<LiveSlice>();
+        }
+        _ => {}
+    }
 }
 
 /// A far jellyfish takes another cycle (its species was edited), at the same phase.

@@ -9,8 +9,7 @@ use super::meshes::{
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
-use crate::plugin::slice::JellyfishSlice;
-use crate::plugin::slice::Tier;
+use crate::plugin::slice::{FEW_AT_A_TIME, JellyfishSlice, LiveSlice, SMALL_BATCHES, Tier};
 use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
 use crate::shape::{self, SurfaceBuffers, packed};
 use bevy::asset::RenderAssetUsages;
@@ -24,12 +23,8 @@ use std::time::Instant;
 /// jellyfish shows the nearer recorded step), bound them, and build the surfaces (CPU
 /// meshes) or pack the shapes (templates) of the jellyfish a camera sees.
 pub(super) fn build_buffers(
-    mut jellyfish: Query<(
-        &JellyfishSlice,
-        &SliceHistory,
-        &mut JellyfishMeshes,
-        &GlobalTransform,
-    )>,
+    mut live: Query<Shaped, With<LiveSlice>>,
+    mut far: Query<Shaped, Without<LiveSlice>>,
     cameras: Query<(&Camera, &Frustum)>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
@@ -39,18 +34,33 @@ pub(super) fn build_buffers(
     recorded.prune();
     let (frusta, recorded, settings) = (&frusta[..], &*recorded, &*settings);
     let batch = || BatchClock::new(&timings, Spent::Meshing);
-    jellyfish.par_iter_mut().for_each_init(
-        batch,
-        |batch, (slice, history, mut meshes, transform)| {
-            if slice.started() {
-                batch.time(slice.tier() as usize, || {
-                    let at = (transform, frusta);
-                    shape_one(slice, history, &mut meshes, at, recorded, settings)
-                });
-            }
-        },
-    );
+    let shape = |batch: &mut BatchClock, (slice, history, mut meshes, transform): ShapedItem| {
+        if slice.started() {
+            batch.time(slice.tier() as usize, || {
+                let at = (transform, frusta);
+                shape_one(slice, history, &mut meshes, at, recorded, settings)
+            });
+        }
+    };
+    // Live slices first, as the stepping takes them (`LiveSlice`).
+    live.par_iter_mut()
+        .batching_strategy(FEW_AT_A_TIME)
+        .for_each_init(batch, shape);
+    far.par_iter_mut()
+        .batching_strategy(SMALL_BATCHES)
+        .for_each_init(batch, shape);
 }
+
+/// One jellyfish as the meshing sees it.
+type Shaped = (
+    &'static JellyfishSlice,
+    &'static SliceHistory,
+    &'static mut JellyfishMeshes,
+    &'static GlobalTransform,
+);
+
+/// The meshing query's item.
+type ShapedItem<'w, 's> = bevy::ecs::query::QueryItem<'w, 's, Shaped>;
 
 /// One jellyfish's surface: blended (or its recorded step, if far), bounded, and built or
 /// packed if a camera sees it.

@@ -12,8 +12,9 @@ mod tier;
 pub(crate) use edit::SliceEdited;
 pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
 pub(crate) use pool::{SpeciesPool, same};
+pub(crate) use step::{FEW_AT_A_TIME, SMALL_BATCHES};
 pub use tier::Tier;
-pub(crate) use tier::{Replay, tier_species};
+pub(crate) use tier::{LiveSlice, Replay, tier_species};
 
 use super::interpolation::SliceHistory;
 use super::jellyfish::Jellyfish;
@@ -33,6 +34,7 @@ pub struct SlicePlugin;
 impl Plugin for SlicePlugin {
     fn build(&self, app: &mut App) {
         app.register_required_components::<Jellyfish, JellyfishSlice>()
+            .register_required_components::<JellyfishSlice, LiveSlice>()
             .register_type::<Jellyfish>()
             .register_type::<JellyfishSlice>()
             .register_type::<Tier>()

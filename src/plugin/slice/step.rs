@@ -8,7 +8,7 @@
 
 use super::JellyfishSlice;
 use super::events::{Lifecycle, LifecycleQueue};
-use super::tier::Replay;
+use super::tier::{LiveSlice, Replay};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::swimming::{
     GuideFrame, Pose, Resting, Steering, Stroke, SwimMotion, TentacleGuides, Travel,
@@ -42,7 +42,8 @@ type StepItem<'w, 's> = bevy::ecs::query::QueryItem<'w, 's, Stepped>;
 /// between. The physics sees only the slice's step, never the frame rate; slices started
 /// at different phases step on different frames, which spreads the cost.
 pub(super) fn step_slices(
-    mut jellyfish: Query<Stepped>,
+    mut live: Query<Stepped, With<LiveSlice>>,
+    mut far: Query<Stepped, Without<LiveSlice>>,
     water: Option<Res<AmbientWater>>,
     time: Res<Time<Virtual>>,
     timings: Res<JellyfishTimings>,
@@ -57,15 +58,19 @@ pub(super) fn step_slices(
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
     let batch = || BatchClock::new(&timings, Spent::Simulation);
-    jellyfish
-        .par_iter_mut()
-        .batching_strategy(SMALL_BATCHES)
-        .for_each_init(batch, |batch, item| {
-            let tier = item.1.tier as usize;
-            batch.time(tier, || {
-                step_one(item, &at, water, &events);
-            });
+    let step = |batch: &mut BatchClock, item: StepItem| {
+        let tier = item.1.tier as usize;
+        batch.time(tier, || {
+            step_one(item, &at, water, &events);
         });
+    };
+    // The costly live slices first, then the replays that even out the threads' ends.
+    live.par_iter_mut()
+        .batching_strategy(FEW_AT_A_TIME)
+        .for_each_init(batch, step);
+    far.par_iter_mut()
+        .batching_strategy(SMALL_BATCHES)
+        .for_each_init(batch, step);
 }
 
 /// The frame's virtual time, as every jellyfish's steps read it.
@@ -125,8 +130,11 @@ fn step_one(
     slice.fresh = false;
 }
 
-/// The work of a frame lies mostly in a hundred near jellyfish among thousands of far
-/// ones, wherever they sit in the query: cut into a few batches per thread instead of
+/// A live slice costs tens of microseconds a frame, a replay one: the live ones are
+/// handed out a few at a time, so that no thread is left with a long batch of them.
+pub(crate) const FEW_AT_A_TIME: BatchingStrategy = BatchingStrategy::fixed(1);
+
+/// The far replays, after the live slices: cut into a few batches per thread instead of
 /// one, a thread that finishes early takes another batch instead of waiting.
 pub(crate) const SMALL_BATCHES: BatchingStrategy = BatchingStrategy {
     batch_size_limits: 1..usize::MAX,

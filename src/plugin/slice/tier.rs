@@ -21,6 +21,13 @@ pub enum Tier {
     Far,
 }
 
+/// Marks a jellyfish whose slice is live (near or mid, or not yet built): the stepping
+/// takes these first, a few at a time, and the far replays after them in small batches,
+/// so that cheap work, not a live slice, is what ends each thread's frame. Only the order
+/// of work reads it; the levels of detail keep it in step with the tier.
+#[derive(Component, Clone, Copy, Debug, Default)]
+pub(crate) struct LiveSlice;
+
 /// The species a tier simulates: the species itself near and far, its
 /// [`Species::compact_box`] mid.
 pub(crate) fn tier_species(species: &Species, tier: Tier) -> Species {
