@@ -44,7 +44,7 @@ pub(super) fn change_tiers(
     // Drop cycles of species no jellyfish has any more (after edits).
     let mut distinct: Vec<&Arc<Species>> = Vec::new();
     for (entity, slice, .., live) in &jellyfish {
-        mark_live(&mut commands, entity, slice.tier, live);
+        mark_live(&mut commands, entity, slice, live);
         if !distinct.iter().any(|s| same(s, &slice.species)) {
             distinct.push(&slice.species);
         }
@@ -140,13 +140,14 @@ pub(super) fn change_tiers(
             }
         });
     for (entity, slice, .., live) in jellyfish.iter_many(plan.keys()) {
-        mark_live(&mut commands, entity, slice.tier, live);
+        mark_live(&mut commands, entity, &slice, live);
     }
 }
 
-/// Marks a jellyfish at `tier` as a live slice or not ([`LiveSlice`]), where it is not.
-fn mark_live(commands: &mut Commands, entity: Entity, tier: Tier, live: bool) {
-    match (tier != Tier::Far, live) {
+/// Marks a started jellyfish near or mid as a live slice, and no other ([`LiveSlice`]):
+/// one started this frame is marked in the next.
+fn mark_live(commands: &mut Commands, entity: Entity, slice: &JellyfishSlice, live: bool) {
+    match (slice.started() && slice.tier != Tier::Far, live) {
         (true, false) => {
             commands.entity(entity).try_insert(LiveSlice);
         }

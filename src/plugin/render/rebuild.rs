@@ -9,7 +9,7 @@ use super::meshes::{
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::settings::JellyfishSettings;
-use crate::plugin::slice::{FEW_AT_A_TIME, JellyfishSlice, LiveSlice, SMALL_BATCHES, Tier};
+use crate::plugin::slice::{JellyfishSlice, LiveSlice, ONE_AT_A_TIME, SMALL_BATCHES, Tier};
 use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
 use crate::shape::{self, SurfaceBuffers, packed};
 use bevy::asset::RenderAssetUsages;
@@ -44,7 +44,7 @@ pub(super) fn build_buffers(
     };
     // Live slices first, as the stepping takes them (`LiveSlice`).
     live.par_iter_mut()
-        .batching_strategy(FEW_AT_A_TIME)
+        .batching_strategy(ONE_AT_A_TIME)
         .for_each_init(batch, shape);
     far.par_iter_mut()
         .batching_strategy(SMALL_BATCHES)

@@ -12,7 +12,7 @@ mod tier;
 pub(crate) use edit::SliceEdited;
 pub use events::{JellyfishStarted, SliceRecovered, StrokeStarted};
 pub(crate) use pool::{SpeciesPool, same};
-pub(crate) use step::{FEW_AT_A_TIME, SMALL_BATCHES};
+pub(crate) use step::{ONE_AT_A_TIME, SMALL_BATCHES};
 pub use tier::Tier;
 pub(crate) use tier::{LiveSlice, Replay, tier_species};
 
@@ -34,7 +34,6 @@ pub struct SlicePlugin;
 impl Plugin for SlicePlugin {
     fn build(&self, app: &mut App) {
         app.register_required_components::<Jellyfish, JellyfishSlice>()
-            .register_required_components::<JellyfishSlice, LiveSlice>()
             .register_type::<Jellyfish>()
             .register_type::<JellyfishSlice>()
             .register_type::<Tier>()

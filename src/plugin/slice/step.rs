@@ -66,7 +66,7 @@ pub(super) fn step_slices(
     };
     // The costly live slices first, then the replays that even out the threads' ends.
     live.par_iter_mut()
-        .batching_strategy(FEW_AT_A_TIME)
+        .batching_strategy(ONE_AT_A_TIME)
         .for_each_init(batch, step);
     far.par_iter_mut()
         .batching_strategy(SMALL_BATCHES)
@@ -131,8 +131,8 @@ fn step_one(
 }
 
 /// A live slice costs tens of microseconds a frame, a replay one: the live ones are
-/// handed out a few at a time, so that no thread is left with a long batch of them.
-pub(crate) const FEW_AT_A_TIME: BatchingStrategy = BatchingStrategy::fixed(1);
+/// handed out one at a time, so that no thread is left with a long batch of them.
+pub(crate) const ONE_AT_A_TIME: BatchingStrategy = BatchingStrategy::fixed(1);
 
 /// The far replays, after the live slices: cut into a few batches per thread instead of
 /// one, a thread that finishes early takes another batch instead of waiting.

@@ -21,10 +21,11 @@ pub enum Tier {
     Far,
 }
 
-/// Marks a jellyfish whose slice is live (near or mid, or not yet built): the stepping
-/// takes these first, a few at a time, and the far replays after them in small batches,
-/// so that cheap work, not a live slice, is what ends each thread's frame. Only the order
-/// of work reads it; the levels of detail keep it in step with the tier.
+/// Marks a jellyfish whose slice is live (near or mid): the stepping and the meshing take
+/// these first, one at a time, and the rest after them in small batches, so that cheap
+/// work, not a live slice, is what ends each thread's frame. Only the order of work reads
+/// it; the levels of detail keep it in step with the tier (without them no jellyfish is
+/// marked, and all are taken in small batches).
 #[derive(Component, Clone, Copy, Debug, Default)]
 pub(crate) struct LiveSlice;
 
