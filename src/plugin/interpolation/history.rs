@@ -5,24 +5,21 @@ use crate::plugin::swimming::Pose;
 use crate::sim::SliceSim;
 use crate::sim::clock::FixedClock;
 use bevy::prelude::*;
-use std::collections::VecDeque;
 
 /// The last few fixed steps of a jellyfish, oldest first: enough to bracket any time a
 /// frame shows. Whoever steps the slice records each step and says which time the frame
 /// shows ([`Self::show`]); the frame's systems only read.
 #[derive(Component, Default)]
 pub(crate) struct SliceHistory {
-    states: VecDeque<Snapshot>,
-    /// Each state's time, in the same order: a frame's bracket reads these few numbers,
-    /// not a cache line of every stored state (ten thousand far jellyfish's histories do
-    /// not fit in a cache).
-    times: VecDeque<f64>,
+    /// The states in a ring of slots, each written in place by the step it records (so a
+    /// step moves no snapshot and allocates nothing): the oldest at `first`, `len` of them.
+    slots: Vec<Snapshot>,
+    first: usize,
+    len: usize,
     /// The slice time the frame shows, s (see `JellyfishSlice::display_time`).
     shown: f64,
-    /// Recycled snapshots, so a step allocates nothing.
-    spare: Vec<Snapshot>,
     /// A shape difference left by a change of tier, faded out over the next steps.
-    carry: Option<Carry>,
+    carry: Option<Box<Carry>>,
 }
 
 /// What the shape was minus what the new tier shows, at the change; added back to the
@@ -48,10 +45,37 @@ impl SliceHistory {
 
     /// Forgets the past, fade included, and records one state (`fill` writes it).
     fn begin(&mut self, clock: &FixedClock, pose: Pose, fill: impl FnOnce(&mut Snapshot)) {
-        self.spare.extend(self.states.drain(..));
-        self.times.clear();
+        (self.first, self.len) = (0, 0);
         self.carry = None;
         self.record(clock, 0.0, pose, fill);
+    }
+
+    /// The `k`th stored state, oldest first.
+    fn state(&self, k: usize) -> &Snapshot {
+        &self.slots[(self.first + k) % self.slots.len()]
+    }
+
+    /// Every stored state, oldest first.
+    fn states_mut(&mut self) -> impl Iterator<Item = &mut Snapshot> {
+        let (tail, head) = self.slots.split_at_mut(self.first);
+        head.iter_mut().chain(tail).take(self.len)
+    }
+
+    /// The slot after the newest state, the oldest dropped to keep at most `capacity`
+    /// states with it (a slot added where the ring is full).
+    fn next_slot(&mut self, capacity: usize) -> usize {
+        while self.len >= capacity.max(1) {
+            self.first = (self.first + 1) % self.slots.len();
+            self.len -= 1;
+        }
+        if self.len == self.slots.len() {
+            // Full: a new slot between the newest and the oldest.
+            self.slots.insert(self.first, Snapshot::default());
+            if self.len > 0 {
+                self.first += 1;
+            }
+        }
+        (self.first + self.len) % self.slots.len()
     }
 
     /// Records the state after a step (`fill` writes the shape, time and swim distance)
@@ -64,8 +88,9 @@ impl SliceHistory {
         pose: Pose,
         fill: impl FnOnce(&mut Snapshot),
     ) {
-        let mut snapshot = self.spare.pop().unwrap_or_default();
-        fill(&mut snapshot);
+        let slot = self.next_slot(Self::capacity(clock, frame));
+        let snapshot = &mut self.slots[slot];
+        fill(snapshot);
         snapshot.pose = pose;
         if let Some(carry) = &mut self.carry {
             let weight = carry.left as f32 / carry.steps.max(1) as f32;
@@ -75,35 +100,27 @@ impl SliceHistory {
                 self.carry = None;
             }
         }
-        self.times.push_back(snapshot.time);
-        self.states.push_back(snapshot);
-        while self.states.len() > Self::capacity(clock, frame) {
-            if let Some(old) = self.states.pop_front() {
-                self.times.pop_front();
-                self.spare.push(old);
-            }
-        }
+        self.len += 1;
     }
 
     /// A change of tier: the new tier's present shape is `now`, at time `time`. The
     /// stored steps are moved to the new clock's time, and the difference between the
     /// newest stored shape and `now` fades out over `steps` steps, so nothing jumps.
     pub fn change_tier(&mut self, now: &Snapshot, time: f64, steps: u32) {
-        let Some(newest) = self.states.back() else {
+        let Some(newest) = self.newest() else {
             return;
         };
         let shift = time - newest.time;
         let mut shape = newest.clone();
         shape.add(now, -1.0);
-        for (s, time) in self.states.iter_mut().zip(&mut self.times) {
+        for s in self.states_mut() {
             s.time += shift;
-            *time = s.time;
         }
-        self.carry = Some(Carry {
+        self.carry = Some(Box::new(Carry {
             shape,
             left: steps,
             steps,
-        });
+        }));
     }
 
     /// Starts over at `now`, the new tier's present shape, at `pose`, with nothing to
@@ -120,32 +137,30 @@ impl SliceHistory {
 
     /// The newest recorded step: none before the jellyfish starts.
     pub fn newest(&self) -> Option<&Snapshot> {
-        self.states.back()
+        self.len.checked_sub(1).map(|k| self.state(k))
     }
 
     /// The two states around time `t` and how far between them it is, in [0, 1]; held at
-    /// the ends if `t` is outside the history.
+    /// the ends if `t` is outside the history. Searched from the newest, where a frame's
+    /// time lies: ten thousand far jellyfish's histories do not fit in a cache, and this
+    /// reads no state the frame does not show.
     pub fn bracket(&self, t: f64) -> Option<(&Snapshot, &Snapshot, f32)> {
-        if t <= *self.times.front()? {
-            let s = self.states.front()?;
+        let newest = self.newest()?;
+        if t > newest.time || t.is_nan() {
+            return Some((newest, newest, 0.0));
+        }
+        // The first state at or after `t` (the times ascend), and the one before it.
+        let mut i = self.len - 1;
+        while i > 0 && self.state(i - 1).time >= t {
+            i -= 1;
+        }
+        if i == 0 {
+            let s = self.state(0);
             return Some((s, s, 0.0));
         }
-        // The first state at or after `t`, and the one before it.
-        match self.times.iter().position(|&time| t <= time) {
-            Some(i) => {
-                let (a, b) = (self.times[i - 1], self.times[i]);
-                let span = (b - a).max(1e-12);
-                Some((
-                    &self.states[i - 1],
-                    &self.states[i],
-                    ((t - a) / span) as f32,
-                ))
-            }
-            None => {
-                let s = self.states.back()?;
-                Some((s, s, 0.0))
-            }
-        }
+        let (a, b) = (self.state(i - 1), self.state(i));
+        let span = (b.time - a.time).max(1e-12);
+        Some((a, b, ((t - a.time) / span) as f32))
     }
 
     /// Sets the slice time the frame shows, s.
@@ -166,8 +181,84 @@ impl SliceHistory {
     /// Moves every stored pose as `edit` moves `from` (a game moved or turned the
     /// jellyfish): what the frames show continues from where it was put.
     pub fn move_poses(&mut self, from: Pose, to: Pose) {
-        for s in &mut self.states {
+        for s in self.states_mut() {
             s.pose = s.pose.moved(from, to);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A history of steps of 0.1 s recorded at times 0.1, 0.2, … (swim = time), for a
+    /// frame of `frame` seconds.
+    fn recorded(steps: u32, frame: f64) -> (SliceHistory, FixedClock) {
+        let clock = FixedClock::new(1.0, 10);
+        let mut history = SliceHistory::default();
+        for k in 1..=steps {
+            let time = f64::from(k) / 10.0;
+            history.record(&clock, frame, Pose::default(), |s| {
+                s.time = time;
+                s.swim = time as f32;
+            });
+        }
+        (history, clock)
+    }
+
+    fn times(history: &SliceHistory) -> Vec<f64> {
+        (0..history.len).map(|k| history.state(k).time).collect()
+    }
+
+    #[test]
+    fn the_ring_keeps_the_newest_steps_in_order_and_brackets_between_them() {
+        // Three steps kept (a frame of no length), after the ring has gone round twice.
+        let (history, _) = recorded(8, 0.0);
+        assert_eq!(times(&history), [0.6, 0.7, 0.8]);
+        assert_eq!(history.slots.len(), 3, "a step allocates nothing once full");
+        let (a, b, t) = history.bracket(0.75).unwrap();
+        assert_eq!((a.time, b.time), (0.7, 0.8));
+        assert!((t - 0.5).abs() < 1e-5, "{t}");
+        // On a step, and at both ends (held there).
+        let (a, b, t) = history.bracket(0.7).unwrap();
+        assert_eq!((a.time, b.time, t), (0.6, 0.7, 1.0));
+        let (a, b, _) = history.bracket(0.1).unwrap();
+        assert_eq!((a.time, b.time), (0.6, 0.6));
+        let (a, b, _) = history.bracket(2.0).unwrap();
+        assert_eq!((a.time, b.time), (0.8, 0.8));
+        assert_eq!(history.newest().map(|s| s.time), Some(0.8));
+    }
+
+    #[test]
+    fn a_longer_frame_keeps_more_steps_and_a_shorter_one_fewer() {
+        let (mut history, clock) = recorded(5, 0.0);
+        // A frame of three steps keeps six: the ring grows between the newest and oldest.
+        for k in 6..=12 {
+            let time = f64::from(k) / 10.0;
+            history.record(&clock, 0.3, Pose::default(), |s| s.time = time);
+            let newest_first = times(&history);
+            assert!(
+                newest_first.windows(2).all(|w| w[0] < w[1]),
+                "{newest_first:?}"
+            );
+        }
+        assert_eq!(times(&history).len(), 6);
+        assert_eq!(times(&history).last(), Some(&1.2));
+        history.record(&clock, 0.0, Pose::default(), |s| s.time = 1.3);
+        assert_eq!(times(&history), [1.1, 1.2, 1.3]);
+    }
+
+    #[test]
+    fn a_change_of_tier_moves_every_step_to_the_new_clock_and_a_restart_forgets() {
+        let (mut history, clock) = recorded(7, 0.0);
+        let mut now = Snapshot::default();
+        now.time = 5.0;
+        history.change_tier(&now, 5.0, 2);
+        assert!(history.fading());
+        let shifted = times(&history);
+        assert!((shifted[2] - 5.0).abs() < 1e-12 && (shifted[0] - 4.8).abs() < 1e-12);
+        history.restart_at(&clock, &now, Pose::default());
+        assert!(!history.fading());
+        assert_eq!(times(&history), [5.0]);
     }
 }

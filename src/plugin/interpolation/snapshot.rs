@@ -10,28 +10,37 @@ use std::sync::Arc;
 
 /// One step's slice, relative to the bell's centroid so that the box following the bell
 /// never shows.
+///
+/// Laid out for ten thousand far jellyfish, whose histories no cache holds: what a far
+/// step writes and a frame reads (its recorded step, time, swim and pose) fills the first
+/// cache line, its trail's header the second; the points of a shape of its own follow.
 #[derive(Clone, Debug, Default)]
+#[repr(C, align(64))]
 pub(crate) struct Snapshot {
-    /// The shape's own points; not read while it is a `recorded` step, whose points are
-    /// the cycle's (kept for the next shape of its own, so a step allocates nothing).
-    own: Points,
-    /// The fringe's guide offsets after the step (`TentacleGuides`), body frame: every
-    /// node, or as a far jellyfish draws them where `thin_trail` says so.
-    pub trail: Vec<Vec3>,
-    /// Whether `trail` is thinned (`Trail::thin_into`): a far jellyfish's step keeps only
-    /// what it draws, a fifth of the trail, and its frames need not thin it again.
-    pub thin_trail: bool,
-    /// The oral tubes' guide offsets after the step, body frame.
-    pub oral_trail: Vec<Vec3>,
-    pub swim: f32,
-    /// Slice time of the state, s.
-    pub time: f64,
-    /// The jellyfish's pose in the world after the step.
-    pub pose: Pose,
     /// The recorded cycle and the step of it this shape is, exactly (a far jellyfish's,
     /// not faded into another shape): its points are read from the cycle, not copied, and
     /// far jellyfish showing it share its packed shape.
     pub recorded: Option<(Arc<CycleCache>, u32)>,
+    /// Slice time of the state, s.
+    pub time: f64,
+    pub swim: f32,
+    /// Whether the fringe's trail is thinned (`Trail::thin_into`): a far jellyfish's step
+    /// keeps only what it draws, a fifth of the trail, and its frames need not thin it
+    /// again.
+    pub thin_trail: bool,
+    /// The jellyfish's pose in the world after the step.
+    pub pose: Pose,
+    /// The fringe's guide offsets after the step (`TentacleGuides`), body frame: every
+    /// node, or as a far jellyfish draws them where `thin_trail` says so; unless `shared`.
+    trail: Vec<Vec3>,
+    /// The oral tubes' guide offsets after the step, body frame.
+    pub oral_trail: Vec<Vec3>,
+    /// A far step's thinned trail, shared with its guides and the steps before it (it
+    /// changes a few times a second): each step holds it, none copies it.
+    shared: Option<Arc<[Vec3]>>,
+    /// The shape's own points; not read while it is a `recorded` step, whose points are
+    /// the cycle's (kept for the next shape of its own, so a step allocates nothing).
+    own: Points,
 }
 
 /// A slice's points, relative to the bell's centroid, and the centroid in the slice.
@@ -138,7 +147,9 @@ impl Snapshot {
         };
         // A whole trail and a thinned one (at a change of tier) are not alike.
         let alike = a.thin_trail == b.thin_trail;
-        lerp3(&mut self.trail, &a.trail, &b.trail, alike);
+        let (ta, tb) = (a.fringe_trail().offsets, b.fringe_trail().offsets);
+        lerp3(&mut self.trail, ta, tb, alike);
+        self.shared = None;
         self.thin_trail = b.thin_trail;
         lerp3(&mut self.oral_trail, &a.oral_trail, &b.oral_trail, true);
         for side in 0..2 {
@@ -172,25 +183,36 @@ impl Snapshot {
     pub fn set_trail(&mut self, fringe: &[Vec3], oral: &[Vec3]) {
         self.trail.clear();
         self.trail.extend_from_slice(fringe);
+        self.shared = None;
         self.thin_trail = false;
         self.oral_trail.clear();
         self.oral_trail.extend_from_slice(oral);
     }
 
     /// The fringe's trail as a far jellyfish draws it (`render::recorded::drawn_view`):
-    /// `thin`, already thinned and rounded to halves (`TentacleGuides::thin_trail`); no
-    /// oral trail, which a far jellyfish does not draw.
-    pub fn set_thin_trail(&mut self, thin: &[Vec3]) {
-        self.trail.clear();
-        self.trail.extend_from_slice(thin);
+    /// `thin`, already thinned and rounded to halves (`TentacleGuides::thin_trail`), held
+    /// not copied (none: no fringe); no oral trail, which a far jellyfish does not draw.
+    pub fn set_thin_trail(&mut self, thin: Option<&Arc<[Vec3]>>) {
+        match thin {
+            // (Mostly the one it holds already: not written again.)
+            Some(thin) if self.shared.as_ref().is_some_and(|s| Arc::ptr_eq(s, thin)) => {}
+            Some(thin) => self.shared = Some(thin.clone()),
+            None => {
+                self.trail.clear();
+                self.shared = None;
+            }
+        }
         self.thin_trail = true;
-        self.oral_trail.clear();
+        // (Mostly empty already: not written, so a far step touches one line less.)
+        if !self.oral_trail.is_empty() {
+            self.oral_trail.clear();
+        }
     }
 
     /// The fringe's trail as stored.
     pub fn fringe_trail(&self) -> Trail<'_> {
         Trail {
-            offsets: &self.trail,
+            offsets: self.shared.as_deref().unwrap_or(&self.trail),
             nodes: if self.thin_trail {
                 THIN_NODES
             } else {
@@ -239,5 +261,43 @@ impl Snapshot {
             trail: self.fringe_trail(),
             oral_trail: Trail::new(&self.oral_trail),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_far_step_holds_its_thinned_trail_and_a_whole_one_replaces_it() {
+        let thin: Arc<[Vec3]> = Arc::from(vec![Vec3::X; 2 * THIN_NODES]);
+        let mut step = Snapshot::default();
+        step.set_trail(&[Vec3::Y; GUIDE_NODES], &[Vec3::Z]);
+        step.set_thin_trail(Some(&thin));
+        let trail = step.fringe_trail();
+        assert_eq!((trail.offsets, trail.nodes), (&thin[..], THIN_NODES));
+        assert!(step.oral_trail.is_empty(), "a far step draws no oral trail");
+        // Blended between two far steps: the trails lerped, and the blend its own.
+        let mut other = Snapshot::default();
+        let moved: Arc<[Vec3]> = Arc::from(vec![Vec3::NEG_X; 2 * THIN_NODES]);
+        other.set_thin_trail(Some(&moved));
+        let mut blended = Snapshot::default();
+        blended.blend(&step, &other, 0.25);
+        let trail = blended.fringe_trail();
+        assert_eq!(trail.nodes, THIN_NODES);
+        assert!(
+            trail.offsets.iter().all(|o| *o == Vec3::X * 0.5),
+            "{:?}",
+            trail.offsets
+        );
+        // A whole trail replaces the shared one; no fringe leaves none.
+        step.set_trail(&[Vec3::Y; GUIDE_NODES], &[]);
+        let trail = step.fringe_trail();
+        assert_eq!(
+            (trail.offsets, trail.nodes),
+            (&[Vec3::Y; GUIDE_NODES][..], GUIDE_NODES)
+        );
+        step.set_thin_trail(None);
+        assert!(step.fringe_trail().offsets.is_empty());
     }
 }

@@ -252,9 +252,9 @@ impl Step<'_> {
                     s.copy_frame(&replay.cache, replay.index(), time, swim);
                     match guides.as_deref_mut() {
                         Some(g) if fading => s.set_trail(g.offsets(), g.oral_offsets()),
-                        Some(g) => s.set_thin_trail(g.thin_trail(far_guides)),
+                        Some(g) => s.set_thin_trail(Some(g.thin_trail(far_guides))),
                         None if fading => s.set_trail(&[], &[]),
-                        None => s.set_thin_trail(&[]),
+                        None => s.set_thin_trail(None),
                     }
                 });
                 if stroke_begins(clock, resting) {

@@ -16,6 +16,7 @@ use crate::shape::packed;
 use crate::shape::tentacles::guide_reference;
 use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid, Trail};
 use bevy::prelude::*;
+use std::sync::Arc;
 
 /// A jellyfish's guide chains: where its fringe trails in the water around it. Read only;
 /// the plugin steps it with the slice.
@@ -38,8 +39,10 @@ pub struct TentacleGuides {
     /// halves), for `thin_guides` guides; `None` once the chains have moved since. A far
     /// jellyfish's trail changes only when its trailing is worked out again, a few times a
     /// second, while every step records it.
-    thin: Vec<Vec3>,
+    thin: Arc<[Vec3]>,
     thin_guides: Option<usize>,
+    /// Where the thinned trail is worked out before it is shared.
+    thinning: Vec<Vec3>,
 }
 
 impl TentacleGuides {
@@ -97,10 +100,11 @@ impl TentacleGuides {
     /// The fringe's trail thinned to `guides` guides and rounded to halves, as a far
     /// jellyfish draws it (`Snapshot::set_thin_trail`): worked out again only after the
     /// chains have moved.
-    pub(crate) fn thin_trail(&mut self, guides: usize) -> &[Vec3] {
+    pub(crate) fn thin_trail(&mut self, guides: usize) -> &Arc<[Vec3]> {
         if self.thin_guides != Some(guides) {
-            Trail::new(self.chains.offsets()).thin_into(guides, &mut self.thin);
-            packed::round_to_halves(&mut self.thin);
+            Trail::new(self.chains.offsets()).thin_into(guides, &mut self.thinning);
+            packed::round_to_halves(&mut self.thinning);
+            self.thin = Arc::from(&self.thinning[..]);
             self.thin_guides = Some(guides);
         }
         &self.thin
