@@ -167,7 +167,8 @@ fn collect_jets(
             Some((e, at, size, -axis * motion.swim_speed))
         })
         .collect();
-    jets.sort_by_key(|j| j.0);
+    // Entities are unique: an unstable sort gives the one order.
+    jets.sort_unstable_by_key(|j| j.0);
     let strength = tank.jet_strength;
     for (_, at, size, velocity) in jets {
         tank.fluid.stir(at, size, velocity * strength);
