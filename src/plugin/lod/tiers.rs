@@ -140,7 +140,7 @@ pub(super) fn change_tiers(
             }
         });
     for (entity, slice, .., live) in jellyfish.iter_many(plan.keys()) {
-        mark_live(&mut commands, entity, &slice, live);
+        mark_live(&mut commands, entity, slice, live);
     }
 }
 
