@@ -267,6 +267,20 @@ impl Snapshot {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::mem::offset_of;
+
+    #[test]
+    fn what_a_far_step_writes_fills_one_cache_line() {
+        assert_eq!(align_of::<Snapshot>(), 64);
+        let ends = [
+            offset_of!(Snapshot, recorded) + size_of::<Option<(Arc<CycleCache>, u32)>>(),
+            offset_of!(Snapshot, time) + size_of::<f64>(),
+            offset_of!(Snapshot, swim) + size_of::<f32>(),
+            offset_of!(Snapshot, thin_trail) + size_of::<bool>(),
+            offset_of!(Snapshot, pose) + size_of::<Pose>(),
+        ];
+        assert!(ends.iter().all(|&end| end <= 64), "{ends:?}");
+    }
 
     #[test]
     fn a_far_step_holds_its_thinned_trail_and_a_whole_one_replaces_it() {
