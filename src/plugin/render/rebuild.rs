@@ -24,7 +24,7 @@ use std::time::Instant;
 /// meshes) or pack the shapes (templates) of the jellyfish a camera sees.
 pub(super) fn build_buffers(
     mut live: Query<Shaped, With<LiveSlice>>,
-    mut far: Query<Shaped, Without<LiveSlice>>,
+    mut rest: Query<Shaped, Without<LiveSlice>>,
     cameras: Query<(&Camera, &Frustum)>,
     settings: Res<JellyfishSettings>,
     timings: Res<JellyfishTimings>,
@@ -46,7 +46,7 @@ pub(super) fn build_buffers(
     live.par_iter_mut()
         .batching_strategy(ONE_AT_A_TIME)
         .for_each_init(batch, shape);
-    far.par_iter_mut()
+    rest.par_iter_mut()
         .batching_strategy(SMALL_BATCHES)
         .for_each_init(batch, shape);
 }

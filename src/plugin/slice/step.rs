@@ -43,7 +43,7 @@ type StepItem<'w, 's> = bevy::ecs::query::QueryItem<'w, 's, Stepped>;
 /// at different phases step on different frames, which spreads the cost.
 pub(super) fn step_slices(
     mut live: Query<Stepped, With<LiveSlice>>,
-    mut far: Query<Stepped, Without<LiveSlice>>,
+    mut rest: Query<Stepped, Without<LiveSlice>>,
     water: Option<Res<AmbientWater>>,
     time: Res<Time<Virtual>>,
     timings: Res<JellyfishTimings>,
@@ -64,11 +64,12 @@ pub(super) fn step_slices(
             step_one(item, &at, water, &events);
         });
     };
-    // The costly live slices first, then the replays that even out the threads' ends.
+    // The costly live slices first, then the rest (the far replays, and any jellyfish not
+    // yet started), which even out the threads' ends.
     live.par_iter_mut()
         .batching_strategy(ONE_AT_A_TIME)
         .for_each_init(batch, step);
-    far.par_iter_mut()
+    rest.par_iter_mut()
         .batching_strategy(SMALL_BATCHES)
         .for_each_init(batch, step);
 }
