@@ -281,3 +281,130 @@ fn a_promoted_jellyfish_draws_what_it_would_have_drawn_far() {
         "shape differs by {shape}, a frame changes it by {frame}"
     );
 }
+
+/// Physics never depends on the order jellyfish are stepped: the same scene, once with
+/// a marker on every other jellyfish (which moves them to another table, so every query
+/// meets them in another order and the parallel batches hold other jellyfish), swims,
+/// trails and draws the same, bit for bit, near, mid and far, alone and in a school.
+#[test]
+fn the_order_jellyfish_are_stepped_in_changes_nothing() {
+    #[derive(Component)]
+    struct Shuffled;
+    type State = (Vec<u32>, Vec<u32>, Vec<u32>, Tier);
+    let scene = |shuffle: bool| {
+        let mut app = app();
+        set_detail(&mut app, 2, 2);
+        spawn_camera(&mut app);
+        let h = add_species(&mut app, species());
+        let sarsia = add_species(
+            &mut app,
+            Species {
+                tentacle_count: 4,
+                ..Species::sarsia()
+            },
+        );
+        for (k, z) in [-3.0f32, -24.0, -5.0, -12.0, -2.0, -40.0, -8.0]
+            .iter()
+            .enumerate()
+        {
+            let species = if k % 2 == 0 {
+                h.clone()
+            } else {
+                sarsia.clone()
+            };
+            app.world_mut().spawn((
+                Jellyfish::new(species).with_seed(k as u32 + 1),
+                Transform::from_xyz(k as f32 - 3.0, 0.0, *z).with_scale(Vec3::splat(10.0)),
+            ));
+        }
+        app.world_mut().spawn((
+            bevy_jellyfish::plugin::JellyfishSchool::new(h, 6, Vec3::new(3.0, 2.0, 3.0))
+                .with_seed(3),
+            Transform::from_xyz(0.0, 0.0, -15.0),
+        ));
+        run(&mut app, 2);
+        if shuffle {
+            let world = app.world_mut();
+            let all: Vec<Entity> = world
+                .query_filtered::<Entity, With<Jellyfish>>()
+                .iter(world)
+                .collect();
+            for e in all.into_iter().step_by(2) {
+                world.entity_mut(e).insert(Shuffled);
+            }
+        }
+        run(&mut app, 150);
+        let world = app.world_mut();
+        let mut states: Vec<(Entity, State)> = world
+            .query::<(
+                Entity,
+                &Transform,
+                &JellyfishSlice,
+                Option<&bevy_jellyfish::plugin::TentacleGuides>,
+            )>()
+            .iter(world)
+            .map(|(e, t, s, guides)| {
+                let pose = t
+                    .translation
+                    .to_array()
+                    .into_iter()
+                    .chain(t.rotation.to_array())
+                    .chain([s.phase().unwrap_or(-1.0), s.swim_distance()])
+                    .map(f32::to_bits)
+                    .collect();
+                let trail = guides
+                    .map(|g| {
+                        g.reference()
+                            .iter()
+                            .chain(g.offsets())
+                            .flat_map(|v| v.to_array())
+                    })
+                    .into_iter()
+                    .flatten()
+                    .map(f32::to_bits)
+                    .collect();
+                (e, (pose, trail, Vec::new(), s.tier()))
+            })
+            .collect();
+        for (e, state) in &mut states {
+            let meshes = app.world().get::<JellyfishMeshes>(*e).unwrap();
+            if meshes.umbrella.is_some() {
+                state.2 = umbrella_positions(&app, *e)
+                    .iter()
+                    .flatten()
+                    .map(|v| v.to_bits())
+                    .collect();
+            }
+        }
+        let met: Vec<Entity> = states.iter().map(|(e, _)| *e).collect();
+        states.sort_by_key(|(e, _)| *e);
+        (states, met)
+    };
+    let ((calm, calm_order), (shuffled, shuffled_order)) = (scene(false), scene(true));
+    assert_ne!(calm_order, shuffled_order, "the marker changes the order");
+    let tiers: Vec<Tier> = calm.iter().map(|(_, s)| s.3).collect();
+    for tier in [Tier::Near, Tier::Mid, Tier::Far] {
+        assert!(
+            tiers.contains(&tier),
+            "the scene has {tier:?} jellyfish: {tiers:?}"
+        );
+    }
+    assert_eq!(calm.len(), 13);
+    let mut drawn = 0;
+    for ((e, a), (_, b)) in calm.iter().zip(&shuffled) {
+        assert_eq!(a.3, b.3, "{e}: tier");
+        assert!(
+            a.0 == b.0,
+            "{e} ({:?}): pose, phase or distance differ",
+            a.3
+        );
+        assert!(a.1 == b.1, "{e} ({:?}): trails differ", a.3);
+        assert!(a.2 == b.2, "{e} ({:?}): umbrellas differ", a.3);
+        drawn += usize::from(!a.2.is_empty());
+    }
+    println!(
+        "{} jellyfish ({tiers:?}), {drawn} of them meshed",
+        calm.len()
+    );
+    assert!(drawn >= 4, "{drawn} umbrellas meshed");
+}
