@@ -118,9 +118,16 @@ pub fn bell_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
     }
 }
 
-/// The bell's glow layer: unlit and additive, so it is the same whatever order it is drawn
-/// in. The species' glow colour times `glow` × [`GLOW_RADIANCE`], brighter along the
-/// canals and over the gonads when the `pattern` is given.
+/// The bell's glow layer: unlit and additive. The species' glow colour times `glow` ×
+/// [`GLOW_RADIANCE`], brighter along the canals and over the gonads when the `pattern` is
+/// given.
+///
+/// Added light commutes with added light, not with its bell's blend: drawn before the
+/// bell, the bell veils it to `1 − alpha` of itself. The two share a mesh and a transform,
+/// so blended surfaces sorted by their centres tied, and the tie went by the order the
+/// renderer met the entities in: a jellyfish moved to another table (a marker added)
+/// glowed a third fainter. So the glow sorts [`GLOW_SORT_OFFSET`] diameters nearer than
+/// its bell and always draws over it.
 pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> StandardMaterial {
     let [r, g, b] = species.glow_color;
     let mut radiance = LinearRgba::rgb(r, g, b) * (species.glow * GLOW_RADIANCE);
@@ -135,9 +142,15 @@ pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
         double_sided: true,
         cull_mode: None,
         fog_enabled: true,
+        depth_bias: GLOW_SORT_OFFSET * species.diameter,
         ..default()
     }
 }
+
+/// How much nearer than its bell a jellyfish's glow layer counts when blended surfaces are
+/// sorted, in bell diameters (at scale 1): enough to break the tie with the bell at any
+/// distance a jellyfish is drawn at, too little to pass another jellyfish.
+pub const GLOW_SORT_OFFSET: f32 = 0.05;
 
 /// How much farther than its centre a jellyfish's tentacles and oral tubes count when
 /// blended surfaces are sorted, in bell diameters.
@@ -204,6 +217,9 @@ mod tests {
         assert_eq!(bell.tissue.kind, Tissue::SHELL);
         assert_eq!(tentacles.tissue.kind, Tissue::SOLID);
         assert_eq!(glow.tissue.kind, Tissue::PAINTED);
+        // The glow shares its bell's mesh and centre: it must sort nearer, never tie.
+        assert!(glow.base.depth_bias > bell.base.depth_bias);
+        assert!(tentacles.base.depth_bias < bell.base.depth_bias);
         let [r, g, b] = species.glow_color;
         let band = species.glow_band * GLOW_RADIANCE;
         assert!((glow.tissue.band - Vec4::new(r, g, b, 0.0) * band).length() < 1e-6);
