@@ -44,7 +44,7 @@ pub(super) fn change_tiers(
     // Drop cycles of species no jellyfish has any more (after edits).
     let mut distinct: Vec<&Arc<Species>> = Vec::new();
     for (entity, slice, .., live) in &jellyfish {
-        mark_live(&mut commands, entity, slice, live);
+        mark_live(&mut commands, entity, slice, Some(live));
         if !distinct.iter().any(|s| same(s, &slice.species)) {
             distinct.push(&slice.species);
         }
@@ -139,22 +139,28 @@ pub(super) fn change_tiers(
                 move_to(&mut slice, &mut history, &mut motion, *tier, cache.clone());
             }
         });
-    for (entity, slice, .., live) in jellyfish.iter_many(plan.keys()) {
-        mark_live(&mut commands, entity, slice, live);
+    // Whatever the first pass queued for them, their new tiers decide.
+    for (entity, slice, ..) in jellyfish.iter_many(plan.keys()) {
+        mark_live(&mut commands, entity, slice, None);
     }
 }
 
-/// Marks a started jellyfish near or mid as a live slice, and no other ([`LiveSlice`]):
-/// one started this frame is marked in the next.
-fn mark_live(commands: &mut Commands, entity: Entity, slice: &JellyfishSlice, live: bool) {
-    match (slice.started() && slice.tier != Tier::Far, live) {
-        (true, false) => {
-            commands.entity(entity).try_insert(LiveSlice);
-        }
-        (false, true) => {
-            commands.entity(entity).try_remove::<LiveSlice>();
-        }
-        _ => {}
+/// Marks a started jellyfish near or mid as a live slice, and no other ([`LiveSlice`]),
+/// where it is not so marked (`marked`: whether it is, if known).
+fn mark_live(
+    commands: &mut Commands,
+    entity: Entity,
+    slice: &JellyfishSlice,
+    marked: Option<bool>,
+) {
+    let live = slice.started() && slice.tier != Tier::Far;
+    if marked == Some(live) {
+        return;
+    }
+    if live {
+        commands.entity(entity).try_insert(LiveSlice);
+    } else {
+        commands.entity(entity).try_remove::<LiveSlice>();
     }
 }
 
