@@ -3,7 +3,9 @@
 //! and cannot leave it; limits that join fields (proportions, budgets) are validation's,
 //! shown as an error above the sliders.
 
-use crate::species::{Advection, FringeDrag, GonadShape, Kernel, SliceGeometry, Species, limits};
+use crate::species::{
+    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, SliceGeometry, Species, limits,
+};
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
 
@@ -194,6 +196,7 @@ pub const OTHER_FIELDS: &[&str] = &[
     "name",
     "slice_geometry",
     "fringe_drag",
+    "muscle_law",
     "advection",
     "kernel",
     "structural_abs",
@@ -251,6 +254,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= ui.checkbox(&mut species.structural_abs, "").changed();
                                 ui.end_row();
                             }
+                            "Muscles" => changed |= muscle_law(ui, &mut species.muscle_law),
                             "Tentacles" => changed |= fringe_drag(ui, &mut species.fringe_drag),
                             "Anatomy" => {
                                 changed |= gonad_shape(ui, &mut species.gonad_shape);
@@ -313,6 +317,14 @@ fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
                the slice at rest";
     let all = &SliceGeometry::ALL;
     picker(ui, "slice_geometry", "slice geometry", why, geometry, all)
+}
+
+fn muscle_law(ui: &mut egui::Ui, law: &mut MuscleLaw) -> bool {
+    let why = "in the axisymmetric slice, Force makes the muscle a force generator (the \
+               stroke, the refill and the best pulse rate are the bell's); Length is the \
+               paper's muscle, whose rest length the contraction sets";
+    let all = &MuscleLaw::ALL;
+    picker(ui, "muscle_law", "muscle law", why, law, all)
 }
 
 fn fringe_drag(ui: &mut egui::Ui, law: &mut FringeDrag) -> bool {

@@ -99,6 +99,32 @@ impl SliceGeometry {
     pub const ALL: [SliceGeometry; 2] = [SliceGeometry::Planar, SliceGeometry::Axisymmetric];
 }
 
+/// What a species' contraction function drives in the axisymmetric slice, where every
+/// ring has its own hoop of mesoglea. (The planar slice always drives the paper's spring,
+/// which stands in for the hoop the plane lacks.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum MuscleLaw {
+    /// A force generator: the function is the muscle's activation, and the muscle pulls
+    /// with it (to at most `contraction_ratio` of its length, where its force has fallen
+    /// to nothing) and never pushes; the bell's stroke is an outcome of that force against
+    /// its hoops, its bending and the water, and it refills on its own recoil. The
+    /// animals.
+    #[default]
+    Force,
+    /// A commanded length, the paper's planar spring carried into r–z: the function sets
+    /// the muscle's rest length, and the muscle, merged with the hoop it lines, pulls the
+    /// bell shut and pushes it open again, so the stroke is the function's at any pulse
+    /// rate.
+    Length,
+}
+
+impl MuscleLaw {
+    /// Every law, for pickers.
+    pub const ALL: [MuscleLaw; 2] = [MuscleLaw::Force, MuscleLaw::Length];
+}
+
 /// How a fringe of tentacles drags on the water the slice resolves.
 ///
 /// Across a tentacle both laws take a cylinder's drag. They differ along it, where a

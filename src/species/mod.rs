@@ -21,7 +21,7 @@ mod presets;
 #[cfg(test)]
 mod tests;
 
-pub use choices::{Advection, FringeDrag, GonadShape, Kernel, SliceGeometry};
+pub use choices::{Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, SliceGeometry};
 pub use error::SpeciesError;
 
 use serde::{Deserialize, Serialize};
@@ -94,19 +94,23 @@ pub struct Species {
     /// Contractions per second, Hz (paper: 0.7).
     pub contraction_frequency: f32,
     /// Muscle rest length at full contraction as a fraction of rest (paper: 0.56). In the
-    /// axisymmetric slice the muscle runs parallel to its ring's hoop of mesoglea, which
+    /// axisymmetric slice the muscle is a force generator and this is the shortest length
+    /// it can pull to (its force falls to nothing there); its ring's hoop of mesoglea
     /// holds the ring somewhat wider.
     pub contraction_ratio: f32,
     /// Fraction of a cycle spent contracting; the rest is re-expansion.
     pub contraction_duty: f32,
     /// Fraction of the time between contractions the muscle takes to relax back to its
-    /// rest length, in unison (paper: half). The bell's own recoil refills it: how long
-    /// that takes is an outcome. Staggered springs nearer the aperture take longer, up to
-    /// the whole of it.
+    /// rest length (in the axisymmetric slice: to let go), in unison (paper: half). The
+    /// bell's own recoil refills it: how long that takes is an outcome. Staggered muscles
+    /// nearer the aperture take longer, up to the whole of it.
     pub relaxation_span: f32,
     /// 0: all muscle springs re-expand in unison; 1: springs nearer the aperture
     /// re-expand later and more slowly (the paper's staggered expansion).
     pub expansion_stagger: f32,
+    /// What the contraction function drives in the axisymmetric slice (see
+    /// [`MuscleLaw`]): a force generator, or the paper's commanded length.
+    pub muscle_law: MuscleLaw,
 
     // --- Tentacles ---
     /// Tentacles around the 3D aperture.

@@ -71,7 +71,7 @@ pub(crate) struct HoopBend {
     pub(crate) stiffness: f32,
 }
 
-/// A muscle spring across the bell; its rest length follows the contraction function.
+/// A muscle across the bell, driven by the contraction function.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Muscle {
     /// The point on one side of the bell.
@@ -80,25 +80,66 @@ pub(crate) struct Muscle {
     pub(crate) b: usize,
     /// Rest length when relaxed, m.
     pub(crate) relaxed: f32,
-    /// Current rest length, m (set by the muscle drive each step).
+    /// Current rest length, m: the contraction's (a spring's), or the shortest length a
+    /// force generator pulls to.
     pub(crate) rest: f32,
-    /// N/m per metre of depth.
+    /// N/m per metre of depth (per radian of rings), at full activation.
     pub(crate) stiffness: f32,
     /// 0 nearest the apex, 1 at the margin: where the staggered expansion is slowest.
     pub(crate) level: f32,
-    /// The share of the stiffness the contraction drives: 1 for a muscle of its own; less
-    /// for an r–z ring's muscle merged with the passive hoop it runs parallel to (one
-    /// element with the pair's stiffness and rest length, the same forces exactly).
-    pub(crate) drive: f32,
+    /// How the contraction function drives it.
+    pub(crate) drive: Drive,
+    /// How strongly it pulls, 0 (let go) to 1 (the full stroke); a spring's is always 1.
+    pub(crate) activation: f32,
+}
+
+/// How the contraction function drives a muscle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Drive {
+    /// The paper's ([`MuscleLaw::Length`](crate::species::MuscleLaw)): the function sets
+    /// the spring's rest length, and the spring pulls the bell shut and pushes it open
+    /// again, standing in for the hoop elasticity a slice has no other way to feel (paper
+    /// section 3.3). `share` is the part of the stiffness the function drives: 1 for a
+    /// muscle of its own, less for an r–z ring's muscle merged with the passive hoop it
+    /// runs parallel to (one element with the pair's stiffness and rest length, the same
+    /// forces exactly).
+    RestLength { share: f32 },
+    /// A force generator ([`MuscleLaw::Force`](crate::species::MuscleLaw), in the
+    /// axisymmetric slice, whose rings have their own hoops): the function sets its
+    /// activation; it pulls with activation × stiffness × its stretch
+    /// beyond the shortest length it can pull to (`contraction_ratio` of relaxed, where
+    /// its force has fallen to nothing), and never pushes. Its length is an outcome of
+    /// that force against the hoops, the bending and the water, so a stroke quicker than
+    /// the bell can follow is shallower, and a muscle that lets go leaves the bell to
+    /// refill on its own recoil.
+    Activation,
 }
 
 impl Muscle {
-    /// The rest length when the contraction function asks for `factor` of the relaxed.
-    pub(crate) fn rest_at(&self, factor: f32) -> f32 {
-        if self.drive == 1.0 {
-            self.relaxed * factor
-        } else {
-            self.relaxed * (1.0 - self.drive * (1.0 - factor))
+    /// Drives it as the contraction function asks for `factor` of the relaxed length, of
+    /// the species' fully contracted `ratio`. A force generator's activation is how far
+    /// into the stroke's depth `factor` is; an escape's deeper stroke (`factor` below the
+    /// ratio) pulls harder and to a shorter length.
+    pub(crate) fn contract(&mut self, factor: f32, ratio: f32) {
+        match self.drive {
+            Drive::RestLength { share } if share == 1.0 => self.rest = self.relaxed * factor,
+            Drive::RestLength { share } => {
+                self.rest = self.relaxed * (1.0 - share * (1.0 - factor));
+            }
+            Drive::Activation => {
+                self.rest = self.relaxed * ratio.min(factor);
+                self.activation = ((1.0 - factor) / (1.0 - ratio).max(1e-6)).max(0.0);
+            }
+        }
+    }
+
+    /// Its stiffness at `stretch` from its rest length: a force generator's only while
+    /// stretched, and as strong as its activation.
+    pub(crate) fn stiffness_at(&self, stretch: f32) -> f32 {
+        match self.drive {
+            Drive::RestLength { .. } => self.stiffness,
+            Drive::Activation if stretch > 0.0 => self.stiffness * self.activation,
+            Drive::Activation => 0.0,
         }
     }
 }
@@ -118,13 +159,13 @@ pub(super) fn spring(points: &[Vec2], a: usize, b: usize, modulus_times_area: f3
 }
 
 /// A muscle between the opposite points `a` and `b`, relaxed at their distance, of
-/// `modulus_times_area` per unit depth, `drive` of which the contraction drives, at `level`.
+/// `modulus_times_area` per unit depth, at `level`, driven as `drive` says (relaxed).
 pub(super) fn muscle(
     points: &[Vec2],
     (a, b): (usize, usize),
     modulus_times_area: f32,
     level: f32,
-    drive: f32,
+    drive: Drive,
 ) -> Muscle {
     let relaxed = (points[b] - points[a]).length();
     Muscle {
@@ -135,6 +176,10 @@ pub(super) fn muscle(
         stiffness: modulus_times_area / relaxed.max(1e-9),
         level,
         drive,
+        activation: match drive {
+            Drive::RestLength { .. } => 1.0,
+            Drive::Activation => 0.0,
+        },
     }
 }
 
@@ -260,14 +305,13 @@ pub(super) fn constraints<'a>(
         }
         c
     });
-    // A muscle spring stands for the circumferential muscle and the ring of mesoglea it
-    // lines: it pulls while contracted and pushes the bell back open like the hoop
-    // elasticity of the 3D umbrella, which a slice has no other way to feel (paper 3.3:
-    // the rest lengths of these springs drive both contraction and re-expansion).
-    let muscles = body
-        .muscles
-        .iter()
-        .map(move |m| stretch(m.a, m.b, m.rest, m.stiffness));
+    // A planar muscle spring pulls and pushes (paper 3.3); an r–z force generator only
+    // pulls, as strongly as it is activated (`Drive`).
+    let muscles = body.muscles.iter().map(move |m| {
+        let mut c = stretch(m.a, m.b, m.rest, m.stiffness);
+        c.stiffness = m.stiffness_at(c.value);
+        c
+    });
     let hinges = body.hinges.iter().map(move |h| {
         let e1 = x[h.a] - x[h.b];
         let e2 = x[h.c] - x[h.b];

@@ -374,8 +374,8 @@ impl Body {
                 )
             })
             .chain(self.muscles.iter().map(move |m| {
-                let len = (p[m.b] - p[m.a]).length();
-                (p[m.a], p[m.b], m.stiffness * (len - m.rest))
+                let stretch = (p[m.b] - p[m.a]).length() - m.rest;
+                (p[m.a], p[m.b], m.stiffness_at(stretch) * stretch)
             }))
     }
 }

@@ -5,11 +5,12 @@
 
 use super::depth::Depth;
 use super::elements::{
-    Hinge, HoopBend, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge,
+    Drive, Hinge, HoopBend, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge,
     hoop_bend, muscle, spring,
 };
 use super::rest_shape::mesoglea_thickness;
 use super::tentacle::tentacle_bending;
+use crate::species::MuscleLaw;
 use crate::species::Species;
 use glam::Vec2;
 use std::ops::Range;
@@ -118,7 +119,8 @@ pub(super) fn circumferential_muscles(
             break;
         }
         let j = bell_len - 1 - i;
-        muscles.push(muscle(subumbrella, (i, j), in_series, level, 1.0));
+        let drive = Drive::RestLength { share: 1.0 };
+        muscles.push(muscle(subumbrella, (i, j), in_series, level, drive));
     }
     muscles
 }
@@ -133,12 +135,16 @@ pub(super) fn circumferential_muscles(
 /// (`elastic_modulus` times that cross-section, at its rest radius), which resists the
 /// bell's being squeezed and pushes it open again; the rings of the muscle band (the
 /// margin to 3/4 of the way up, as in the plane) also carry the muscle around the same
-/// circumference, in parallel (`muscle_modulus × muscle_cross_section` of the ring), its
-/// rest length driven by the contraction function. `hoop_cross_section`, the planar
-/// slice's stand-in for this circumference, has no part here. (The muscle in series with
-/// its hoop, as the plane has it, let the strong real hoop pull a prolate bell past its
-/// commanded contraction until its margin folded in: Sarsia crumpled after 16 strokes.)
-/// Returns the driven muscles; the hoops join `springs`.
+/// circumference, in parallel (`muscle_modulus × muscle_cross_section` of the ring), as
+/// the species' `muscle_law` says: a force generator the contraction function activates
+/// ([`Drive::Activation`]), which pulls and never pushes, so the bell refills on its
+/// hoops' and its bending's recoil; or the paper's spring whose rest length the function
+/// sets, merged with the hoop into one element, which pushes the bell open again as fast
+/// as it pulled it shut. `hoop_cross_section`, the planar slice's stand-in for this
+/// circumference, has no part here. (The muscle in series with its hoop, as the plane
+/// has it, let the strong real hoop pull a prolate bell past its commanded contraction
+/// until its margin folded in: Sarsia crumpled after 16 strokes.)
+/// Returns the muscles; the hoops without one join `springs`.
 pub(super) fn ring_hoops(
     species: &Species,
     subumbrella: &[Vec2],
@@ -153,14 +159,20 @@ pub(super) fn ring_hoops(
         let ring = mesoglea_thickness(species, arc_fraction(i, m)) * spacing;
         let hoop = species.elastic_modulus * ring;
         let level = 1.0 - i as f32 / m as f32;
-        if level < 0.25 {
-            springs.push(spring(subumbrella, i, j, hoop));
-            continue;
-        }
-        // The muscle and the hoop in parallel, as one element.
         let fibre = species.muscle_modulus * species.muscle_cross_section * ring;
-        let drive = fibre / (fibre + hoop).max(f32::MIN_POSITIVE);
-        muscles.push(muscle(subumbrella, (i, j), fibre + hoop, level, drive));
+        match species.muscle_law {
+            _ if level < 0.25 => springs.push(spring(subumbrella, i, j, hoop)),
+            MuscleLaw::Force => {
+                springs.push(spring(subumbrella, i, j, hoop));
+                muscles.push(muscle(subumbrella, (i, j), fibre, level, Drive::Activation));
+            }
+            MuscleLaw::Length => {
+                // The muscle and the hoop in parallel, as one element.
+                let share = fibre / (fibre + hoop).max(f32::MIN_POSITIVE);
+                let drive = Drive::RestLength { share };
+                muscles.push(muscle(subumbrella, (i, j), fibre + hoop, level, drive));
+            }
+        }
     }
     muscles
 }

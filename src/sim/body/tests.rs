@@ -337,3 +337,52 @@ fn the_papers_curtain_drags_a_dense_fringe_as_much_along_as_across() {
     assert!(ratios.windows(2).all(|w| w[0] <= w[1]), "{ratios:?}");
     assert_eq!(ratios[4], 1.0, "{ratios:?}");
 }
+
+/// An r–z bell's muscles are force generators (`Drive::Activation`): let go, they exert
+/// nothing however the bell is squeezed or pulled open; activated, they pull as hard as
+/// they are activated; and squeezed past the shortest length they pull to, they go slack
+/// instead of pushing.
+#[test]
+fn an_axisymmetric_muscle_pulls_as_hard_as_it_is_activated_and_never_pushes() {
+    let species = Species::aurelia();
+    let ratio = species.contraction_ratio;
+    let mut b = Body::new(&species, Vec2::new(0.0, 0.2), 0.002);
+    assert!(!b.muscles.is_empty());
+    assert!(
+        b.muscles
+            .iter()
+            .all(|m| m.drive == elements::Drive::Activation)
+    );
+    // Pulled open by a tenth, then squeezed to half its width: the rings' hoops and the
+    // bending push back either way, the muscles only where they are activated.
+    let rest = b.points.clone();
+    let muscle_forces = |b: &mut Body, factor: f32, squeeze: f32| {
+        for (p, r) in b.points.iter_mut().zip(&rest) {
+            *p = Vec2::new(r.x * squeeze, r.y);
+        }
+        for m in &mut b.muscles {
+            m.contract(factor, ratio);
+        }
+        let mut with = vec![Vec2::ZERO; b.points.len()];
+        b.forces(&mut with);
+        let muscles = std::mem::take(&mut b.muscles);
+        let mut without = vec![Vec2::ZERO; b.points.len()];
+        b.forces(&mut without);
+        b.muscles = muscles;
+        let (l, r) = (b.muscles[0].a, b.muscles[0].b);
+        // The margin's inward pull: along +x on the left (x < 0), −x on the right.
+        ((with[l] - without[l]).x, (with[r] - without[r]).x)
+    };
+    for squeeze in [1.1, 0.5] {
+        assert_eq!(muscle_forces(&mut b, 1.0, squeeze), (0.0, 0.0), "let go");
+    }
+    let (half_l, half_r) = muscle_forces(&mut b, 1.0 - 0.5 * (1.0 - ratio), 1.1);
+    let (full_l, full_r) = muscle_forces(&mut b, ratio, 1.1);
+    assert!(half_l > 0.0 && half_r < 0.0, "pulls the margins together");
+    assert!(
+        (full_l / half_l - 2.0).abs() < 1e-3 && (full_r / half_r - 2.0).abs() < 1e-3,
+        "twice as hard at twice the activation: {half_l} {full_l}"
+    );
+    let squeezed = muscle_forces(&mut b, ratio, 0.5 * ratio);
+    assert_eq!(squeezed, (0.0, 0.0), "slack below its shortest length");
+}

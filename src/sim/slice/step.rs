@@ -144,7 +144,7 @@ impl SliceSim {
             } else {
                 1.0 - (1.0 - factor) * depth
             };
-            m.rest = m.rest_at(factor);
+            m.contract(factor, self.drive.ratio);
         }
     }
 
