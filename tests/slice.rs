@@ -737,7 +737,7 @@ fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
     })
 }
 
-in_the_planar_slice!(#[ignore = "long: 2 × 15 runs of 20 s"] fn the_sweep_peaks_at_the_bells_resonance);
+in_both_geometries!(#[ignore = "long: 2 × 15 runs of 20 s"] fn the_sweep_peaks_at_the_bells_resonance);
 /// The paper's Fig. 5 finding, on the paper's model.
 fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
     let frequencies: Vec<f32> = (2..=16).map(|k| k as f32 / 10.0).collect();
@@ -772,9 +772,16 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
 
 in_both_geometries!(fn a_startled_slice_escapes_then_eases_back);
 /// A touch makes every shipped species beat deeper and quicker: over the strokes its
-/// escape lasts it takes more strokes and swims further than its untouched twin, then
-/// beats at its own rhythm again; a touch without strength changes nothing, to the bit.
+/// escape lasts it takes more strokes, then beats at its own rhythm again; a touch
+/// without strength changes nothing, to the bit. Each species swims further for it in the
+/// geometry it is calibrated in: a saucer forced into the plane hardly swims (the moon
+/// jelly 0.08 diameters a cycle, ± 10% from stroke to stroke), and what its quicker
+/// refills give back there is the stroke's noise.
 fn a_startled_slice_escapes_then_eases_back(geometry: SliceGeometry) {
+    let calibrated: Vec<String> = calibrated_in(geometry)
+        .into_iter()
+        .map(|s| s.name)
+        .collect();
     for species in shipped(geometry) {
         let mut calm = SliceSim::new(&species).unwrap();
         run_cycles(&mut calm, 2.0);
@@ -810,7 +817,7 @@ fn a_startled_slice_escapes_then_eases_back(geometry: SliceGeometry) {
         );
         assert!(gained > 0.25 * per_cycle, "{}: quicker", species.name);
         assert!(
-            startled_swim > 1.1 * calm_swim,
+            startled_swim > 1.1 * calm_swim || !calibrated.contains(&species.name),
             "{}: startled {startled_swim} m against {calm_swim} m",
             species.name
         );
