@@ -122,7 +122,7 @@ impl Muscle {
     /// ratio) pulls harder and to a shorter length.
     pub(crate) fn contract(&mut self, factor: f32, ratio: f32) {
         match self.drive {
-            Drive::RestLength { share } if share == 1.0 => self.rest = self.relaxed * factor,
+            Drive::RestLength { share: 1.0 } => self.rest = self.relaxed * factor,
             Drive::RestLength { share } => {
                 self.rest = self.relaxed * (1.0 - share * (1.0 - factor));
             }
