@@ -17,8 +17,8 @@ mod tissue;
 pub use flash::FLASH_SPREAD;
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use looks::{
-    GLOW_RADIANCE, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material, glow_material,
-    glow_tissue, tentacle_material, tentacle_material_at,
+    GLOW_RADIANCE, GLOW_SORT_OFFSET, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material,
+    glow_material, glow_tissue, tentacle_material, tentacle_material_at,
 };
 pub use materials::JellyfishMaterialPlugin;
 pub use meshes::{CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
