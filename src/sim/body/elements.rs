@@ -106,12 +106,11 @@ pub(crate) enum Drive {
     RestLength { share: f32 },
     /// A force generator ([`MuscleLaw::Force`](crate::species::MuscleLaw), in the
     /// axisymmetric slice, whose rings have their own hoops): the function sets its
-    /// activation; it pulls with activation × stiffness × its stretch
-    /// beyond the shortest length it can pull to (`contraction_ratio` of relaxed, where
-    /// its force has fallen to nothing), and never pushes. Its length is an outcome of
-    /// that force against the hoops, the bending and the water, so a stroke quicker than
-    /// the bell can follow is shallower, and a muscle that lets go leaves the bell to
-    /// refill on its own recoil.
+    /// activation; it pulls with activation × stiffness × its stretch beyond the shortest
+    /// length it can pull to (`contraction_ratio` of relaxed, where its force has fallen
+    /// to nothing), and never pushes. Its length is an outcome of that force against the
+    /// hoops, the bending and the water, so a stroke quicker than the bell can follow is
+    /// shallower, and a muscle that lets go leaves the bell to refill on its own recoil.
     Activation,
 }
 
