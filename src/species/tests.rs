@@ -60,8 +60,12 @@ fn the_moon_jelly_is_a_saucer_timed_as_the_animal() {
     // Its muscle lets go well before the bell has refilled; the recoil is the bell's.
     assert!(s.relaxation_span <= 0.5);
     assert_eq!(s.slice_geometry, SliceGeometry::Axisymmetric);
-    // Fifteen cells per diameter on the paper's grid.
-    assert!((s.diameter / s.cell_size() - 15.0).abs() < 1e-3);
+    // A force-generating muscle in a mesoglea that returns 58% of its strain energy
+    // (DeMont & Gosline 1988).
+    assert_eq!(s.muscle_law, crate::species::MuscleLaw::Force);
+    assert_eq!(s.mesoglea_resilience, 0.58);
+    // Seventeen cells per diameter on the paper's grid (3.5 diameters of 60 cells).
+    assert!((s.diameter / s.cell_size() - 60.0 / 3.5).abs() < 1e-3);
     // The paper's model keeps its own plate: the same bending law, a thinner wall.
     let paper = Species::paper();
     let plate = |s: &Species| s.elastic_modulus * s.thickness.powi(3) / 12.0 / 0.002;
