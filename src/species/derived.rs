@@ -57,7 +57,12 @@ impl Species {
             .find(|l| l.field == "domain_diameters")
             .map_or(3.0, |l| l.min as f32);
         let domain = (self.domain_diameters * 2.0 / 3.0).max(least);
-        let grid = (self.grid_resolution as f32 * domain / self.domain_diameters).round();
+        let cells_per_diameter = self.grid_resolution as f32 / self.domain_diameters;
+        let mut grid = (cells_per_diameter * domain).round();
+        // Whole cells: rounded down past the smallest box, one more.
+        if grid / cells_per_diameter < least {
+            grid += 1.0;
+        }
         let compact = Species {
             domain_diameters: grid * self.domain_diameters / self.grid_resolution as f32,
             grid_resolution: grid as u32,
