@@ -321,8 +321,9 @@ fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
 
 fn muscle_law(ui: &mut egui::Ui, law: &mut MuscleLaw) -> bool {
     let why = "in the axisymmetric slice, Force makes the muscle a force generator (the \
-               stroke, the refill and the best pulse rate are the bell's); Length is the \
-               paper's muscle, whose rest length the contraction sets";
+               stroke, the refill and the best pulse rate are the bell's); Length commands \
+               its rest length, the paper's planar spring carried into r–z (the plane \
+               always takes the paper's)";
     let all = &MuscleLaw::ALL;
     picker(ui, "muscle_law", "muscle law", why, law, all)
 }
