@@ -775,8 +775,8 @@ in_both_geometries!(fn a_startled_slice_escapes_then_eases_back);
 /// escape lasts it takes more strokes, then beats at its own rhythm again; a touch
 /// without strength changes nothing, to the bit. Each species swims further for it in the
 /// geometry it is calibrated in: a saucer forced into the plane hardly swims (the moon
-/// jelly 0.08 diameters a cycle, ± 10% from stroke to stroke), and what its quicker
-/// refills give back there is the stroke's noise.
+/// jelly 0.09 diameters a cycle, ± 7% from stroke to stroke; its escape gains 8% there),
+/// and what its quicker refills give back is within the stroke's noise.
 fn a_startled_slice_escapes_then_eases_back(geometry: SliceGeometry) {
     let calibrated: Vec<String> = calibrated_in(geometry)
         .into_iter()
