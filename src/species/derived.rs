@@ -57,14 +57,16 @@ impl Species {
             .find(|l| l.field == "domain_diameters")
             .map_or(3.0, |l| l.min as f32);
         let domain = (self.domain_diameters * 2.0 / 3.0).max(least);
-        let cells_per_diameter = self.grid_resolution as f32 / self.domain_diameters;
-        let mut grid = (cells_per_diameter * domain).round();
+        let grid_now = self.grid_resolution as f32;
+        // The box `grid` cells of this species' size span, in diameters.
+        let span = |grid: f32| grid * self.domain_diameters / grid_now;
+        let mut grid = (grid_now * domain / self.domain_diameters).round();
         // Whole cells: rounded down past the smallest box, one more.
-        if grid / cells_per_diameter < least {
+        if span(grid) < least {
             grid += 1.0;
         }
         let compact = Species {
-            domain_diameters: grid * self.domain_diameters / self.grid_resolution as f32,
+            domain_diameters: span(grid),
             grid_resolution: grid as u32,
             ..self.clone()
         };
