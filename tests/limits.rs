@@ -85,6 +85,7 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "contraction_ratio" => s.contraction_ratio = v,
         "contraction_duty" => s.contraction_duty = v,
         "relaxation_span" => s.relaxation_span = v,
+        "muscle_extent" => s.muscle_extent = v,
         "expansion_stagger" => s.expansion_stagger = v,
         "tentacle_count" => s.tentacle_count = count(value),
         "tentacle_length" => s.tentacle_length = v,

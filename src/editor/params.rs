@@ -94,6 +94,7 @@ pub const SECTIONS: &[Section] = &[
             param!(contraction_duty, "contraction duty", "", 1.0, false, Real),
             param!(relaxation_span, "relaxation span", "", 1.0, false, Real),
             param!(expansion_stagger, "expansion stagger", "", 1.0, false, Real),
+            param!(muscle_extent, "muscle extent", "", 1.0, false, Real),
             param!(muscle_modulus, "muscle modulus", " Pa", 1.0, true, Real),
             param!(muscle_cross_section, "muscle cross-section", "", 1.0, true, Real),
         ],

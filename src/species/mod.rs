@@ -108,6 +108,10 @@ pub struct Species {
     /// 0: all muscle springs re-expand in unison; 1: springs nearer the aperture
     /// re-expand later and more slowly (the paper's staggered expansion).
     pub expansion_stagger: f32,
+    /// Share of the subumbrella, from the margin up towards the apex (as a fraction of its
+    /// arc), that the circular swimming muscle lines (paper: 3/4). Where the stomach and
+    /// the gonads line the subumbrella there is no swimming muscle.
+    pub muscle_extent: f32,
     /// What the contraction function drives in the axisymmetric slice (see
     /// [`MuscleLaw`]): a force generator, or the paper's commanded length.
     pub muscle_law: MuscleLaw,

@@ -49,6 +49,11 @@ impl Species {
             // A force generator: the bell's stroke, its refill and its best pulse rate are
             // outcomes of the muscle's pull against the bell and its water.
             muscle_law: MuscleLaw::Force,
+            // Its swimming muscle lines the outer half of the subumbrella: the centre holds
+            // the stomach, the gastric pouches and the four gonads that ring them. (With the
+            // paper's three quarters the upper bell squeezed its own stroke: 0.43 D a
+            // stroke against 0.47, `docs/physics.md` section 5.)
+            muscle_extent: 0.5,
             // Hundreds of short marginal tentacles, an eighth of the bell long, each a
             // slender cylinder in the water.
             tentacle_count: 200,
@@ -92,6 +97,9 @@ impl Species {
             contraction_duty: 0.35,
             relaxation_span: 0.5,
             expansion_stagger: 1.0,
+            // The paper's muscle springs, from the margin three quarters of the way up to
+            // the apex (its Fig. 4).
+            muscle_extent: 0.75,
             // In the plane its springs' rest lengths follow the contraction, as the paper's;
             // in r–z, where every ring has its hoop, a force generator, as the animals'
             // (its sweep then peaks at 1 Hz, and at 1.4 Hz with a bell twice as stiff).
@@ -192,8 +200,10 @@ impl Species {
             // The mesoglea's measured resilience, as the moon jelly's (DeMont & Gosline
             // 1988, measured on a hydromedusa, *Polyorchis*).
             mesoglea_resilience: 0.58,
-            // The moon jelly's muscle: a force generator.
+            // The moon jelly's muscle: a force generator, lining the subumbrella outside
+            // the stomach, a dish half as wide as the disc (below).
             muscle_law: MuscleLaw::Force,
+            muscle_extent: 0.5,
             margin_thickness_ratio: 0.25,
             // Its pulse rate and stroke are not from a record of it (the published
             // kinematics were out of reach): the one rower we have a record of, the moon
@@ -298,6 +308,9 @@ impl Species {
             // the bell refilled: 8 recoveries in 30 strokes with the muscle letting go over
             // half the refill, 2 at grid 78 in a box of five (`docs/physics.md`).
             muscle_law: MuscleLaw::Length,
+            // Its stomach hangs at the end of the long manubrium, not on the subumbrella:
+            // the paper's three quarters of the arc.
+            muscle_extent: 0.75,
             // The paper's lossless mesoglea, with which that commanded stroke was chosen
             // (the other species' measured 58% goes with their force generator).
             mesoglea_resilience: 1.0,

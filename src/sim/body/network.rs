@@ -93,7 +93,8 @@ pub(super) fn hoop_bending(
 }
 
 /// The circumferential muscle: springs between opposite subumbrellar points, from the
-/// aperture's margins to 3/4 of the way up to the apex.
+/// aperture's margins up the species' `muscle_extent` of the way to the apex (the
+/// paper's three quarters).
 ///
 /// Each is the muscle in series with the hoop of mesoglea it lines (the slice has no
 /// circumference of its own): the muscle sets the rest length (the contraction function),
@@ -113,9 +114,10 @@ pub(super) fn circumferential_muscles(
     let hoop = species.elastic_modulus * species.hoop_cross_section * band;
     let in_series = fibre * hoop / (fibre + hoop);
     let mut muscles = Vec::new();
+    let unlined = 1.0 - species.muscle_extent;
     for i in 0..m {
         let level = 1.0 - i as f32 / m as f32;
-        if level < 0.25 {
+        if level < unlined {
             break;
         }
         let j = bell_len - 1 - i;
@@ -133,8 +135,8 @@ pub(super) fn circumferential_muscles(
 /// The ring's cross-section is real: the local mesoglea thickness times the band of the
 /// meridian one point stands for (`spacing`). Every ring is a hoop of mesoglea
 /// (`elastic_modulus` times that cross-section, at its rest radius), which resists the
-/// bell's being squeezed and pushes it open again; the rings of the muscle band (the
-/// margin to 3/4 of the way up, as in the plane) also carry the muscle around the same
+/// bell's being squeezed and pushes it open again; the rings of the muscle band (from the
+/// margin `muscle_extent` of the way up, as in the plane) also carry the muscle around the same
 /// circumference, in parallel (`muscle_modulus × muscle_cross_section` of the ring), as
 /// the species' `muscle_law` says: a force generator the contraction function activates
 /// ([`Drive::Activation`]), which pulls and never pushes, so the bell refills on its
@@ -154,6 +156,7 @@ pub(super) fn ring_hoops(
     let bell_len = subumbrella.len();
     let m = bell_len / 2;
     let mut muscles = Vec::new();
+    let unlined = 1.0 - species.muscle_extent;
     for i in 0..m {
         let j = bell_len - 1 - i;
         let ring = mesoglea_thickness(species, arc_fraction(i, m)) * spacing;
@@ -161,7 +164,7 @@ pub(super) fn ring_hoops(
         let level = 1.0 - i as f32 / m as f32;
         let fibre = species.muscle_modulus * species.muscle_cross_section * ring;
         match species.muscle_law {
-            _ if level < 0.25 => springs.push(spring(subumbrella, i, j, hoop)),
+            _ if level < unlined => springs.push(spring(subumbrella, i, j, hoop)),
             MuscleLaw::Force => {
                 springs.push(spring(subumbrella, i, j, hoop));
                 muscles.push(muscle(subumbrella, (i, j), fibre, level, Drive::Activation));
