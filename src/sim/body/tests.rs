@@ -386,3 +386,48 @@ fn an_axisymmetric_muscle_pulls_as_hard_as_it_is_activated_and_never_pushes() {
     let squeezed = muscle_forces(&mut b, ratio, 0.5 * ratio);
     assert_eq!(squeezed, (0.0, 0.0), "slack below its shortest length");
 }
+
+/// The circular muscle lines the subumbrella from the margin up `muscle_extent` of its
+/// arc and no further, in both geometries: the margin's ring always, every ring to the
+/// apex when it is 1, more rings the further it reaches.
+#[test]
+fn the_muscle_lines_the_bell_from_the_margin_as_far_as_its_extent() {
+    for base in [Species::paper(), Species::aurelia()] {
+        let levels = |extent: f32| -> Vec<f32> {
+            let s = Species {
+                muscle_extent: extent,
+                ..base.clone()
+            };
+            let b = Body::new(&s, Vec2::new(0.0, 0.2), 0.002);
+            b.muscles.iter().map(|m| m.level).collect()
+        };
+        let rings = rings_to_apex(&base);
+        let mut counts = Vec::new();
+        for extent in [0.1, 0.3, 0.5, 0.75, 1.0] {
+            let l = levels(extent);
+            assert!(
+                l.contains(&1.0),
+                "{}: the margin's ring at {extent}",
+                base.name
+            );
+            assert!(
+                l.iter().all(|&level| level >= 1.0 - extent),
+                "{}: a muscle above {extent} of the arc: {l:?}",
+                base.name
+            );
+            counts.push(l.len());
+        }
+        assert!(
+            counts.windows(2).all(|w| w[0] < w[1]),
+            "{}: {counts:?}",
+            base.name
+        );
+        assert_eq!(counts[4], rings, "{}: every ring to the apex", base.name);
+    }
+}
+
+/// Rings from the margin to the apex (the apex's own point excluded): half the
+/// subumbrellar chain.
+fn rings_to_apex(species: &Species) -> usize {
+    Body::new(species, Vec2::new(0.0, 0.2), 0.002).bell.len() / 2
+}
