@@ -20,8 +20,8 @@ use bevy::prelude::*;
 use bevy::render::{Render, RenderApp};
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    CPU_MESH_TAG, DetailLevels, JellyfishGlow, JellyfishMeshes, JellyfishSlice, SurfaceMaterial,
-    SurfaceMode, SurfacePath, Tier,
+    CPU_MESH_TAG, DetailLevels, JellyfishGlow, JellyfishMeshes, JellyfishSettings, JellyfishSlice,
+    SurfaceMaterial, SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
 use std::collections::HashSet;
@@ -197,10 +197,12 @@ fn templates_draw_what_cpu_meshes_draw() {
             seed: 5,
         };
         let mut offscreen = match Offscreen::new(WIDTH, HEIGHT, |app| {
-            // Two of each tier: the far ones share their recorded steps' shapes.
+            // Every jellyfish far until all have started (below): ranked with hysteresis,
+            // the first species to load would hold the near tiers, and which loads first
+            // is the machine's doing, not the scene's.
             let detail = DetailLevels {
-                near: 2,
-                mid: 2,
+                near: 0,
+                mid: 0,
                 ..default()
             };
             app.add_plugins(AquariumPlugin {
@@ -243,6 +245,9 @@ fn templates_draw_what_cpu_meshes_draw() {
                 3 * PER_SPECIES
             );
         }
+        // Two of each tier: the far ones share their recorded steps' shapes.
+        let mut settings = offscreen.world_mut().resource_mut::<JellyfishSettings>();
+        (settings.detail.near, settings.detail.mid) = (2, 2);
         offscreen
             .world_mut()
             .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
