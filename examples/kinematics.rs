@@ -127,10 +127,11 @@ fn contracted(samples: &[Sample], k: u32) -> (f32, f32) {
     })
 }
 
-/// A species with every length times `scale` and its animal's pulse rate at that size
-/// (frequency falling as the diameter to the −1/2, `docs/physics.md` section 5).
+/// A species with every length times `scale`, beating at its animal's pulse rate for that
+/// size ([`Species::natural_pulse_rate`]: as the diameter to the −1/2, `docs/physics.md`
+/// section 5).
 fn resized(base: &Species, scale: f32) -> Species {
-    Species {
+    let resized = Species {
         name: format!("{} {:.0} mm", base.name, base.diameter * scale * 1000.0),
         diameter: base.diameter * scale,
         height: base.height * scale,
@@ -143,8 +144,11 @@ fn resized(base: &Species, scale: f32) -> Species {
         manubrium_radius: base.manubrium_radius * scale,
         oral_arm_length: base.oral_arm_length * scale,
         oral_arm_width: base.oral_arm_width * scale,
-        contraction_frequency: base.contraction_frequency / scale.sqrt(),
         ..base.clone()
+    };
+    Species {
+        contraction_frequency: resized.natural_pulse_rate(),
+        ..resized
     }
 }
 
@@ -152,7 +156,7 @@ fn resized(base: &Species, scale: f32) -> Species {
 /// diameters per second: negative where it drifts backwards.
 fn slowest_in_refill(species: &Species, samples: &[Sample], stroke: u32) -> f32 {
     cycle(samples, stroke)
-        .filter(|(phase, _)| *phase > species.contraction_duty)
+        .filter(|(phase, _)| *phase > species.contraction_share())
         .map(|(_, x)| x.speed)
         .fold(f32::MAX, f32::min)
 }

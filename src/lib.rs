@@ -31,7 +31,7 @@ pub use plugin::{
     JellyfishSystems, SpeciesRejected,
 };
 pub use sim::{SliceSim, SliceView};
-pub use species::{GonadShape, MuscleLaw, SliceGeometry, Species, SpeciesError};
+pub use species::{GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError};
 
 /// What a game needs: `use bevy_jellyfish::prelude::*;`.
 pub mod prelude {
@@ -44,7 +44,9 @@ pub mod prelude {
         JellyfishStarted, JellyfishSystems, Pose, Resting, SliceRecovered, SpeciesRejected,
         Steering, StrokeStarted, SurfaceMode, SwimMotion, TankWater, Tier,
     };
-    pub use crate::species::{GonadShape, MuscleLaw, SliceGeometry, Species, SpeciesError};
+    pub use crate::species::{
+        GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
+    };
 }
 
 #[cfg(test)]

@@ -82,6 +82,8 @@ fn set(s: &mut Species, field: &str, value: f64) {
         "muscle_cross_section" => s.muscle_cross_section = v,
         "hoop_cross_section" => s.hoop_cross_section = v,
         "contraction_frequency" => s.contraction_frequency = v,
+        "natural_frequency" => s.natural_frequency = v,
+        "natural_diameter" => s.natural_diameter = v,
         "contraction_ratio" => s.contraction_ratio = v,
         "contraction_duty" => s.contraction_duty = v,
         "relaxation_span" => s.relaxation_span = v,

@@ -7,7 +7,7 @@
 mod common;
 
 use bevy_jellyfish::sim::inspect::{Outline, contains};
-use bevy_jellyfish::{SliceGeometry, SliceSim, Species};
+use bevy_jellyfish::{MuscleTiming, SliceGeometry, SliceSim, Species};
 use glam::Vec2;
 
 /// The shipped species in `geometry`.
@@ -768,6 +768,65 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
         f_stiff > f,
         "stiffer peaks at {f_stiff} Hz, the paper's model at {f} Hz"
     );
+}
+
+#[test]
+#[ignore = "long: 4 × 15 runs of 20 s"]
+/// Issue 28: each animal swims fastest near the rate it pulses at, in the geometry it is
+/// calibrated in. Its muscle's twitch keeps its seconds at any rate and its mesoglea its
+/// viscosity, so beaten much faster the bell no longer refills; a stiffer bell refills
+/// sooner and peaks higher, as the paper's resonance does.
+fn every_animal_swims_fastest_near_its_own_pulse_rate() {
+    let peak = |frequencies: &[f32], d: &[f32]| {
+        let (i, best) = d
+            .iter()
+            .enumerate()
+            .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
+        (frequencies[i], best)
+    };
+    let animals: Vec<Species> = calibrated_in(SliceGeometry::Axisymmetric)
+        .into_iter()
+        .filter(|s| s.muscle_timing == MuscleTiming::Twitch)
+        .collect();
+    assert_eq!(
+        animals.len(),
+        3,
+        "the three shipped animals beat with a twitch"
+    );
+    for base in animals {
+        // From a sixth of its own rate to two and a half times it.
+        let natural = base.natural_pulse_rate();
+        let frequencies: Vec<f32> = (1..=15).map(|k| natural * k as f32 / 6.0).collect();
+        let d = sweep(&base, &frequencies);
+        let (f, best) = peak(&frequencies, &d);
+        let (low, high) = (d[0], d[d.len() - 1]);
+        println!(
+            "{}: own rate {natural:.2} Hz, peak {f:.2} Hz, {best:.2} D in 20 s; ends {low:.2} and {high:.2} D",
+            base.name
+        );
+        assert!(
+            (0.75 * natural..=1.5 * natural).contains(&f),
+            "{}: peak at {f} Hz, its animal pulses at {natural} Hz",
+            base.name
+        );
+        assert!(
+            best >= 1.15 * low && best >= 1.15 * high,
+            "{}: {d:?}",
+            base.name
+        );
+        if base.name == "Aurelia" {
+            let stiffer = Species {
+                elastic_modulus: 2.0 * base.elastic_modulus,
+                ..base.clone()
+            };
+            let (f_stiff, _) = peak(&frequencies, &sweep(&stiffer, &frequencies));
+            println!("bell twice as stiff: peak {f_stiff:.2} Hz");
+            assert!(
+                f_stiff > f,
+                "stiffer peaks at {f_stiff} Hz, the animal at {f} Hz"
+            );
+        }
+    }
 }
 
 in_both_geometries!(fn a_startled_slice_escapes_then_eases_back);

@@ -2,8 +2,8 @@
 //! fixed time at contraction frequencies from 0.2 to 1.6 Hz (0.1 Hz apart), with staggered
 //! and with unison re-expansion, and with a bell twice as stiff, whose resonance (and so
 //! its best frequency) lies higher; beside it the calibrated moon jelly
-//! ([`Species::aurelia`], same size), whose own peak should sit near the rate its animal
-//! pulses at.
+//! ([`Species::aurelia`], same size) and crystal jelly ([`Species::aequorea`], 60 mm),
+//! whose own peaks should sit near the rates their animals pulse at.
 //!
 //! Prints a table and the peaks, writes `sweep.csv` and `sweep.png` (distance against
 //! frequency; trajectories against time) into `--out` (default `docs/`).
@@ -26,7 +26,7 @@ struct Variant {
     apply: fn(&mut Species),
 }
 
-const VARIANTS: [Variant; 4] = [
+const VARIANTS: [Variant; 5] = [
     Variant {
         label: "staggered",
         color: [31, 119, 180],
@@ -43,9 +43,14 @@ const VARIANTS: [Variant; 4] = [
         apply: |s| s.elastic_modulus *= 2.0,
     },
     Variant {
-        label: "moon jelly, calibrated",
+        label: "moon jelly, calibrated (0.7 Hz)",
         color: [148, 103, 189],
         apply: |s| *s = Species::aurelia(),
+    },
+    Variant {
+        label: "crystal jelly, calibrated (0.6 Hz)",
+        color: [255, 127, 14],
+        apply: |s| *s = Species::aequorea(),
     },
 ];
 
@@ -56,6 +61,8 @@ fn frequencies() -> Vec<f32> {
 struct Run {
     variant: usize,
     frequency: f32,
+    /// The bell's diameter, m.
+    diameter: f32,
     /// (time s, distance m)
     trajectory: Vec<(f32, f32)>,
     recoveries: u32,
@@ -97,7 +104,8 @@ fn species(variant: usize, frequency: f32, o: &Options) -> Species {
 }
 
 fn simulate(variant: usize, frequency: f32, o: &Options) -> Result<Run, String> {
-    let mut sim = SliceSim::new(&species(variant, frequency, o)).map_err(|e| e.to_string())?;
+    let species = species(variant, frequency, o);
+    let mut sim = SliceSim::new(&species).map_err(|e| e.to_string())?;
     let mut trajectory = vec![(0.0, 0.0)];
     while sim.time() < o.seconds - 1e-4 {
         sim.advance(0.1);
@@ -106,6 +114,7 @@ fn simulate(variant: usize, frequency: f32, o: &Options) -> Result<Run, String> 
     Ok(Run {
         variant,
         frequency,
+        diameter: species.diameter,
         trajectory,
         recoveries: sim.recoveries(),
     })
@@ -168,12 +177,11 @@ fn final_distance(run: &Run) -> f32 {
     run.trajectory.last().map_or(0.0, |p| p.1)
 }
 
-/// Distance against frequency for one variant, in diameters.
+/// Distance against frequency for one variant, in its own diameters.
 fn curve(runs: &[Run], variant: usize) -> Vec<(f32, f32)> {
-    let diameter = Species::paper().diameter;
     runs.iter()
         .filter(|r| r.variant == variant)
-        .map(|r| (r.frequency, final_distance(r) / diameter))
+        .map(|r| (r.frequency, final_distance(r) / r.diameter))
         .collect()
 }
 
@@ -271,7 +279,6 @@ fn report(runs: &[Run], o: &Options) {
         [200, 30, 60],
         [120, 60, 20],
     ];
-    let diameter = Species::paper().diameter;
     let shown = [0.2, 0.4, 0.6, 0.7, 0.8, 1.0, 1.2, 1.6];
     let trajectories = Chart {
         title: "Trajectories, staggered".into(),
@@ -286,7 +293,7 @@ fn report(runs: &[Run], o: &Options) {
                 points: r
                     .trajectory
                     .iter()
-                    .map(|(t, d)| (*t, d / diameter))
+                    .map(|(t, d)| (*t, d / r.diameter))
                     .collect(),
                 color: *color,
                 markers: false,

@@ -4,7 +4,8 @@
 //! shown as an error above the sliders.
 
 use crate::species::{
-    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, SliceGeometry, Species, limits,
+    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry, Species,
+    limits,
 };
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
@@ -90,6 +91,8 @@ pub const SECTIONS: &[Section] = &[
         title: "Muscles",
         params: &[
             param!(contraction_frequency, "contraction frequency", " Hz", 1.0, false, Real),
+            param!(natural_frequency, "natural pulse rate", " Hz", 1.0, false, Real),
+            param!(natural_diameter, "at diameter", " mm", MM, true, Real),
             param!(contraction_ratio, "contracted length", "", 1.0, false, Real),
             param!(contraction_duty, "contraction duty", "", 1.0, false, Real),
             param!(relaxation_span, "relaxation span", "", 1.0, false, Real),
@@ -198,6 +201,7 @@ pub const OTHER_FIELDS: &[&str] = &[
     "slice_geometry",
     "fringe_drag",
     "muscle_law",
+    "muscle_timing",
     "advection",
     "kernel",
     "structural_abs",
@@ -255,7 +259,10 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= ui.checkbox(&mut species.structural_abs, "").changed();
                                 ui.end_row();
                             }
-                            "Muscles" => changed |= muscle_law(ui, &mut species.muscle_law),
+                            "Muscles" => {
+                                changed |= muscle_law(ui, &mut species.muscle_law);
+                                changed |= muscle_timing(ui, &mut species.muscle_timing);
+                            }
                             "Tentacles" => changed |= fringe_drag(ui, &mut species.fringe_drag),
                             "Anatomy" => {
                                 changed |= gonad_shape(ui, &mut species.gonad_shape);
@@ -327,6 +334,14 @@ fn muscle_law(ui: &mut egui::Ui, law: &mut MuscleLaw) -> bool {
                always takes the paper's)";
     let all = &MuscleLaw::ALL;
     picker(ui, "muscle_law", "muscle law", why, law, all)
+}
+
+fn muscle_timing(ui: &mut egui::Ui, timing: &mut MuscleTiming) -> bool {
+    let why = "Twitch keeps the muscle's contraction and release as long as at the natural \
+               pulse rate for the bell's size, so beaten much faster the muscle never lets go \
+               (the animals); Cycle makes them fractions of any cycle (the paper's)";
+    let all = &MuscleTiming::ALL;
+    picker(ui, "muscle_timing", "muscle timing", why, timing, all)
 }
 
 fn fringe_drag(ui: &mut egui::Ui, law: &mut FringeDrag) -> bool {

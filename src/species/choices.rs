@@ -125,6 +125,30 @@ impl MuscleLaw {
     pub const ALL: [MuscleLaw; 2] = [MuscleLaw::Force, MuscleLaw::Length];
 }
 
+/// How long the muscle takes to contract and to let go when the pulse rate changes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum MuscleTiming {
+    /// The muscle's twitch: it contracts in fixed seconds, the `contraction_duty` of a
+    /// cycle at the animal's own pulse rate for its size
+    /// ([`Species::natural_pulse_rate`](crate::Species::natural_pulse_rate)), and lets go
+    /// as it does at that rate. Beaten slower, the bell rests relaxed between strokes;
+    /// beaten faster, the muscle still takes its time to contract and lets go in what is
+    /// left of the cycle, so the bell's own recoil limits how fast it can usefully beat.
+    /// The animals.
+    #[default]
+    Twitch,
+    /// The paper's: the contraction and the release are those fractions of whatever cycle
+    /// the bell beats, so a quicker rate is a quicker twitch.
+    Cycle,
+}
+
+impl MuscleTiming {
+    /// Every timing, for pickers.
+    pub const ALL: [MuscleTiming; 2] = [MuscleTiming::Twitch, MuscleTiming::Cycle];
+}
+
 /// How a fringe of tentacles drags on the water the slice resolves.
 ///
 /// Across a tentacle both laws take a cylinder's drag. They differ along it, where a

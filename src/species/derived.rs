@@ -1,7 +1,7 @@
 //! What follows from a species' fields: the fluid box and its cells, the water's
 //! kinematic viscosity, the mesoglea's damping, the period and the fixed step.
 
-use super::{Species, limits};
+use super::{MuscleTiming, Species, limits};
 
 impl Species {
     /// Fluid cell size, m.
@@ -34,12 +34,43 @@ impl Species {
         self.viscosity / self.density
     }
 
-    /// The mesoglea's Kelvin–Voigt time τ = η/E, s, from its resilience R at the stroke
-    /// frequency: a linear viscoelastic solid returns `R = exp(−π·tan δ)` of its energy,
-    /// and Kelvin–Voigt's `tan δ = ω·τ`.
+    /// The mesoglea's Kelvin–Voigt time τ = η/E, s, from its resilience R at the animal's
+    /// own pulse rate, where it was measured: a linear viscoelastic solid returns
+    /// `R = exp(−π·tan δ)` of its energy, and Kelvin–Voigt's `tan δ = ω·τ`. A material
+    /// constant: beaten faster, the bell loses more of each stroke's energy.
     pub fn mesoglea_damping_time(&self) -> f32 {
         let loss_tangent = -self.mesoglea_resilience.clamp(1e-3, 1.0).ln() / std::f32::consts::PI;
-        loss_tangent / (std::f32::consts::TAU * self.contraction_frequency)
+        loss_tangent / (std::f32::consts::TAU * self.natural_pulse_rate())
+    }
+
+    /// The animal's own pulse rate at this bell's diameter, Hz: `natural_frequency` at
+    /// `natural_diameter`, scaled as the diameter to the −1/2.
+    pub fn natural_pulse_rate(&self) -> f32 {
+        self.natural_frequency * (self.natural_diameter / self.diameter).sqrt()
+    }
+
+    /// The bell's cycle over its animal's natural one, `natural_pulse_rate /
+    /// contraction_frequency`: above 1 it beats slower than its own rate. With the paper's
+    /// [`MuscleTiming::Cycle`] always 1: its stroke is a share of whatever cycle it beats.
+    pub fn cycle_stretch(&self) -> f32 {
+        let stretch = self.natural_pulse_rate() / self.contraction_frequency;
+        if self.muscle_timing == MuscleTiming::Cycle || !(stretch > 0.0 && stretch.is_finite()) {
+            1.0
+        } else {
+            stretch
+        }
+    }
+
+    /// The share of the cycle spent contracting at `contraction_frequency`:
+    /// `contraction_duty` at the natural rate, and with a [`MuscleTiming::Twitch`] the
+    /// same seconds at any other (kept between 2% and 90% of the cycle).
+    pub fn contraction_share(&self) -> f32 {
+        let stretch = self.cycle_stretch();
+        if stretch == 1.0 {
+            self.contraction_duty
+        } else {
+            (self.contraction_duty / stretch).clamp(0.02, 0.9)
+        }
     }
 
     /// Contraction period, s.
@@ -86,7 +117,7 @@ impl Species {
         const COURANT: f32 = 0.5;
         const JET_SPEED_FACTOR: f32 = 4.0;
         let margin_speed = (1.0 - self.contraction_ratio) * 0.5 * self.diameter
-            / (self.contraction_duty * self.period());
+            / (self.contraction_share() * self.period());
         let expected = JET_SPEED_FACTOR * margin_speed;
         let courant = self.period() * expected / (COURANT * self.cell_size());
         let steps = courant.ceil().max(MIN_STEPS_PER_CYCLE);

@@ -21,7 +21,9 @@ mod presets;
 #[cfg(test)]
 mod tests;
 
-pub use choices::{Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, SliceGeometry};
+pub use choices::{
+    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
+};
 pub use error::SpeciesError;
 
 use serde::{Deserialize, Serialize};
@@ -93,12 +95,24 @@ pub struct Species {
     // --- Muscles (paper section 3.3) ---
     /// Contractions per second, Hz (paper: 0.7).
     pub contraction_frequency: f32,
+    /// How the muscle's contraction and release last when the pulse rate is not the
+    /// animal's own (see [`MuscleTiming`]).
+    pub muscle_timing: MuscleTiming,
+    /// The pulse rate the animal beats at when its bell is `natural_diameter` wide, Hz:
+    /// with [`MuscleTiming::Twitch`], the rate whose cycle `contraction_duty` and
+    /// `relaxation_span` describe in seconds. Smaller medusae pulse faster; at other diameters the
+    /// rate is taken to scale as the diameter to the −1/2 (McHenry & Jed 2003 for the
+    /// trend; the exponent is ours).
+    pub natural_frequency: f32,
+    /// The bell diameter `natural_frequency` was measured at, m.
+    pub natural_diameter: f32,
     /// Muscle rest length at full contraction as a fraction of rest (paper: 0.56). In the
     /// axisymmetric slice the muscle is a force generator and this is the shortest length
     /// it can pull to (its force falls to nothing there); its ring's hoop of mesoglea
     /// holds the ring somewhat wider.
     pub contraction_ratio: f32,
-    /// Fraction of a cycle spent contracting; the rest is re-expansion.
+    /// Fraction of a cycle spent contracting; the rest is re-expansion (with
+    /// [`MuscleTiming::Twitch`], of a cycle at the natural pulse rate).
     pub contraction_duty: f32,
     /// Fraction of the time between contractions the muscle takes to relax back to its
     /// rest length (in the axisymmetric slice: to let go), in unison (paper: half). The

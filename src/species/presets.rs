@@ -1,7 +1,9 @@
 //! The shipped species (as in `assets/species/`) and the paper's own variations and
 //! numerics, one call away.
 
-use super::{Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, SliceGeometry, Species};
+use super::{
+    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry, Species,
+};
 
 impl Species {
     /// The moon jelly, *Aurelia aurita*, a young medusa of 40 mm shaped and timed from
@@ -46,6 +48,12 @@ impl Species {
             contraction_frequency: 0.7,
             contraction_duty: 0.28,
             relaxation_span: 0.5,
+            // Those are the muscle's twitch: 0.40 s to contract and 0.51 s to let go at
+            // 40 mm, whatever the rate it is made to beat at. Beaten faster than they fit,
+            // the muscle fires again before it has let go.
+            muscle_timing: MuscleTiming::Twitch,
+            natural_frequency: 0.7,
+            natural_diameter: 0.04,
             // A force generator: the bell's stroke, its refill and its best pulse rate are
             // outcomes of the muscle's pull against the bell and its water.
             muscle_law: MuscleLaw::Force,
@@ -93,6 +101,10 @@ impl Species {
             // (the distance swum in 20 s peaks between 0.7 and 1 Hz).
             hoop_cross_section: 0.0101,
             contraction_frequency: 0.7,
+            // Its stroke is a fraction of whatever cycle it beats: the paper's sweep.
+            muscle_timing: MuscleTiming::Cycle,
+            natural_frequency: 0.7,
+            natural_diameter: 0.040,
             contraction_ratio: 0.56,
             contraction_duty: 0.35,
             relaxation_span: 0.5,
@@ -211,6 +223,9 @@ impl Species {
             // go over half the refill) and its muscle, at 0.6 Hz, the moon jelly's rate at
             // 60 mm within 5% (D^(-1/2) from 0.7 Hz at 40 mm).
             contraction_frequency: 0.6,
+            muscle_timing: MuscleTiming::Twitch,
+            natural_frequency: 0.6,
+            natural_diameter: 0.06,
             contraction_duty: 0.28,
             contraction_ratio: 0.56,
             // A hundred long, fine tentacles, three quarters of the bell long: chosen.
@@ -303,6 +318,11 @@ impl Species {
             contraction_ratio: 0.5,
             contraction_duty: 0.3,
             relaxation_span: 1.0,
+            // A twitch, as the rowers' muscle (`muscle_timing` from the moon jelly): at
+            // its own rate it lets go just as it fires again.
+            muscle_timing: MuscleTiming::Twitch,
+            natural_frequency: 1.4,
+            natural_diameter: 0.016,
             // The paper's muscle, whose rest length the contraction sets. As a force
             // generator (the other species' muscle) its thin margin folded inward while
             // the bell refilled: 8 recoveries in 30 strokes with the muscle letting go over

@@ -100,7 +100,8 @@ impl Travel<'_> {
         }
         if let Some(steering) = self.steering {
             let phase = stroke.phase;
-            let contracting = !stroke.resting && phase > 0.0 && phase <= species.contraction_duty;
+            let contracting =
+                !stroke.resting && phase > 0.0 && phase <= species.contraction_share();
             rotation = steering.turn(rotation, position, surge / species.diameter, contracting);
         }
         let before = position;
