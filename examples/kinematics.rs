@@ -5,7 +5,7 @@
 //!
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
-//! margin and height; then each shipped species at other sizes, every length scaled
+//! margin, outline (the exumbrella's widest, as a video shows the bell) and height; then each shipped species at other sizes, every length scaled
 //! and the pulse rate set to the animal's at that size, with its refill's slowest speed
 //! too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
@@ -18,6 +18,7 @@ mod common;
 #[path = "sweep/plot.rs"]
 mod plot;
 
+use bevy_jellyfish::shape::profile::Profile;
 use bevy_jellyfish::{SliceSim, Species};
 use common::{overrides, shipped_species, with_overrides};
 use plot::{Chart, Series};
@@ -34,17 +35,26 @@ struct Sample {
     /// Over the last step, diameters per second.
     speed: f32,
     margin: f32,
+    /// The bell's outline (its exumbrella) at its widest.
+    widest: f32,
     height: f32,
 }
 
-/// The margin's width and the bell's height from apex to margin (the subumbrella's plus
-/// the apex's mesoglea), m.
-fn shape(sim: &SliceSim) -> (f32, f32) {
+/// The margin's width, the outline's widest (the subumbrella given its mesoglea, as the
+/// renderer draws the exumbrella) and the bell's height from apex to margin (the
+/// subumbrella's plus the apex's mesoglea), m.
+fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32) {
     let b = sim.bell_points();
     let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
     let margin = (right - left).length();
+    profile.build(b, b, sim.species(), b.len() / 2);
+    let widest = profile
+        .pairs
+        .iter()
+        .map(|p| (p.exumbrella[1].x - p.exumbrella[0].x).abs())
+        .fold(margin, f32::max);
     let height = apex.y - 0.5 * (left.y + right.y) + sim.species().thickness;
-    (margin, height)
+    (margin, widest, height)
 }
 
 /// `strokes` strokes from rest, a sample after every fixed step. A slice that had to
@@ -53,11 +63,12 @@ fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
     let mut sim = SliceSim::new(species).expect("valid species");
     let d = species.diameter;
     let mut samples = Vec::new();
+    let mut profile = Profile::default();
     let (mut time, mut distance) = (0.0f32, 0.0f32);
     let end = strokes as f32 * species.period();
     while sim.time() < end {
         sim.advance_with(1.0 / 60.0, |sim| {
-            let (margin, height) = shape(sim);
+            let (margin, widest, height) = shape(sim, &mut profile);
             let x = sim.swim_distance() / d;
             let dt = sim.time() - time;
             samples.push(Sample {
@@ -66,6 +77,7 @@ fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
                 distance: x,
                 speed: if dt > 0.0 { (x - distance) / dt } else { 0.0 },
                 margin: margin / d,
+                widest: widest / d,
                 height: height / d,
             });
             time = sim.time();
@@ -120,10 +132,11 @@ fn cycle(samples: &[Sample], k: u32) -> impl Iterator<Item = (f32, &Sample)> {
         .map(move |s| (s.cycles - k as f32, s))
 }
 
-/// The narrowest margin and the greatest height over stroke `k`, over the rest diameter.
-fn contracted(samples: &[Sample], k: u32) -> (f32, f32) {
-    cycle(samples, k).fold((f32::MAX, 0.0f32), |(m, h), (_, x)| {
-        (m.min(x.margin), h.max(x.height))
+/// The narrowest margin and outline and the greatest height over stroke `k`, over the
+/// rest diameter.
+fn contracted(samples: &[Sample], k: u32) -> (f32, f32, f32) {
+    cycle(samples, k).fold((f32::MAX, f32::MAX, 0.0f32), |(m, w, h), (_, x)| {
+        (m.min(x.margin), w.min(x.widest), h.max(x.height))
     })
 }
 
@@ -202,17 +215,17 @@ fn main() {
     let runs = from_rest_all(species, strokes);
 
     println!(
-        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | height contracted (rest) |"
+        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted (rest) |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     for (s, samples) in &runs {
         let strokes = per_stroke(samples);
         let steady = under_way_per_stroke(samples);
         let refill = slowest_in_refill(s, samples, under_way);
-        let (margin, height) = contracted(samples, under_way);
+        let (margin, widest, height) = contracted(samples, under_way);
         let first: Vec<String> = strokes.iter().take(3).map(|d| format!("{d:.3}")).collect();
         println!(
-            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {height:.2} ({:.2}) |",
+            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} ({:.2}) |",
             s.name,
             first.join(", "),
             samples[0].height,
@@ -236,15 +249,15 @@ fn main() {
         strokes,
     );
     println!(
-        "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | slowest in the refill (D/s) | margin contracted | height contracted |"
+        "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted |"
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     for (s, samples) in &resized_runs {
         let steady = under_way_per_stroke(samples);
         let refill = slowest_in_refill(s, samples, under_way);
-        let (margin, height) = contracted(samples, under_way);
+        let (margin, widest, height) = contracted(samples, under_way);
         println!(
-            "| {} | {:.2} | {steady:.3} | {:.1} | {refill:+.3} | {margin:.2} | {height:.2} |",
+            "| {} | {:.2} | {steady:.3} | {:.1} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} |",
             s.name,
             s.contraction_frequency,
             steady * s.diameter * s.contraction_frequency * 1000.0
@@ -332,6 +345,12 @@ fn main() {
             rec.iter().map(|r| (r.0, r.1)).collect(),
         ),
         shape_chart(
+            "Moon jelly, under way: outline",
+            "widest / rest diameter",
+            |x| x.widest,
+            rec.iter().map(|r| (r.0, r.2)).collect(),
+        ),
+        shape_chart(
             "Moon jelly, a stroke under way: height",
             "height / rest diameter",
             |x| x.height,
@@ -381,14 +400,22 @@ fn main() {
     let written = std::fs::File::create(&csv).and_then(|mut f| {
         writeln!(
             f,
-            "species,diameter_m,time_s,strokes,distance_d,speed_d_per_s,margin_d,height_d"
+            "species,diameter_m,time_s,strokes,distance_d,speed_d_per_s,margin_d,widest_d,height_d"
         )?;
         for (s, samples) in runs.iter().chain(&resized_runs) {
             for x in samples {
                 writeln!(
                     f,
-                    "{},{},{:.4},{:.4},{:.5},{:.5},{:.4},{:.4}",
-                    s.name, s.diameter, x.time, x.cycles, x.distance, x.speed, x.margin, x.height
+                    "{},{},{:.4},{:.4},{:.5},{:.5},{:.4},{:.4},{:.4}",
+                    s.name,
+                    s.diameter,
+                    x.time,
+                    x.cycles,
+                    x.distance,
+                    x.speed,
+                    x.margin,
+                    x.widest,
+                    x.height
                 )?;
             }
         }
