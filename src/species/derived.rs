@@ -34,13 +34,16 @@ impl Species {
         self.viscosity / self.density
     }
 
-    /// The mesoglea's Kelvin–Voigt time τ = η/E, s, from its resilience R at the animal's
-    /// own pulse rate, where it was measured: a linear viscoelastic solid returns
-    /// `R = exp(−π·tan δ)` of its energy, and Kelvin–Voigt's `tan δ = ω·τ`. A material
-    /// constant: beaten faster, the bell loses more of each stroke's energy.
+    /// The mesoglea's Kelvin–Voigt time τ = η/E, s, from its resilience R over a cycle at
+    /// the rate the stroke's timing describes (a [`MuscleTiming::Twitch`]'s natural rate,
+    /// where it was measured; with the paper's `Cycle`, the cycle beaten): a linear
+    /// viscoelastic solid returns `R = exp(−π·tan δ)` of its energy, and Kelvin–Voigt's
+    /// `tan δ = ω·τ`. For the animals a material constant: beaten faster, the bell loses
+    /// more of each stroke's energy.
     pub fn mesoglea_damping_time(&self) -> f32 {
         let loss_tangent = -self.mesoglea_resilience.clamp(1e-3, 1.0).ln() / std::f32::consts::PI;
-        loss_tangent / (std::f32::consts::TAU * self.natural_pulse_rate())
+        let rate = self.contraction_frequency * self.cycle_stretch();
+        loss_tangent / (std::f32::consts::TAU * rate)
     }
 
     /// The animal's own pulse rate at this bell's diameter, Hz: `natural_frequency` at

@@ -203,3 +203,25 @@ fn the_cost_model_counts_the_advection_scheme() {
         assert_eq!(s.validate().is_err(), cubic > MAX_COST_PER_SECOND);
     }
 }
+
+#[test]
+fn the_animals_mesoglea_keeps_its_viscosity_at_any_pulse_rate() {
+    let own = Species::aurelia();
+    let faster = Species {
+        contraction_frequency: 2.0 * own.contraction_frequency,
+        ..own.clone()
+    };
+    assert!(own.mesoglea_damping_time() > 0.0);
+    assert!((faster.mesoglea_damping_time() / own.mesoglea_damping_time() - 1.0).abs() < 1e-6);
+    // The paper's reading: the resilience is over whatever cycle it beats.
+    let cycle = Species {
+        muscle_timing: crate::species::MuscleTiming::Cycle,
+        ..own.clone()
+    };
+    let cycle_faster = Species {
+        contraction_frequency: 2.0 * own.contraction_frequency,
+        ..cycle.clone()
+    };
+    let ratio = cycle_faster.mesoglea_damping_time() / cycle.mesoglea_damping_time();
+    assert!((ratio - 0.5).abs() < 1e-6, "{ratio}");
+}
