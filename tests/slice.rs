@@ -714,6 +714,15 @@ fn bells_stay_whole_on_finer_grids(geometry: SliceGeometry) {
     }
 }
 
+/// The frequency of the longest of `distances` (one per frequency), and that distance.
+fn peak(frequencies: &[f32], distances: &[f32]) -> (f32, f32) {
+    let (i, best) = distances
+        .iter()
+        .enumerate()
+        .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
+    (frequencies[i], best)
+}
+
 /// Distance in 20 s, diameters, at each of `frequencies` (the paper's Fig. 5 measure).
 fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
     std::thread::scope(|s| {
@@ -741,13 +750,7 @@ in_both_geometries!(#[ignore = "long: 2 × 15 runs of 20 s"] fn the_sweep_peaks_
 /// The paper's Fig. 5 finding, on the paper's model.
 fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
     let frequencies: Vec<f32> = (2..=16).map(|k| k as f32 / 10.0).collect();
-    let peak = |d: &[f32]| {
-        let (i, best) = d
-            .iter()
-            .enumerate()
-            .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
-        (frequencies[i], best)
-    };
+    let peak = |d: &[f32]| peak(&frequencies, d);
     let base = paper(geometry);
     let d = sweep(&base, &frequencies);
     let (f, best) = peak(&d);
@@ -777,13 +780,6 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
 /// viscosity, so beaten much faster the bell no longer refills; a stiffer bell refills
 /// sooner and peaks higher, as the paper's resonance does.
 fn every_animal_swims_fastest_near_its_own_pulse_rate() {
-    let peak = |frequencies: &[f32], d: &[f32]| {
-        let (i, best) = d
-            .iter()
-            .enumerate()
-            .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
-        (frequencies[i], best)
-    };
     let animals: Vec<Species> = calibrated_in(SliceGeometry::Axisymmetric)
         .into_iter()
         .filter(|s| s.muscle_timing == MuscleTiming::Twitch)
