@@ -141,27 +141,13 @@ fn contracted(samples: &[Sample], k: u32) -> (f32, f32, f32) {
 }
 
 /// A species with every length times `scale`, beating at its animal's pulse rate for that
-/// size ([`Species::natural_pulse_rate`]: as the diameter to the −1/2, `docs/physics.md`
+/// size ([`Species::resized`]; the rate as the diameter to the −1/2, `docs/physics.md`
 /// section 5).
 fn resized(base: &Species, scale: f32) -> Species {
-    let resized = Species {
-        name: format!("{} {:.0} mm", base.name, base.diameter * scale * 1000.0),
-        diameter: base.diameter * scale,
-        height: base.height * scale,
-        thickness: base.thickness * scale,
-        // Plate bending E·ϑ³/12 (per the fixed 2 mm reference hinge).
-        angular_stiffness: base.angular_stiffness * scale.powi(3),
-        tentacle_length: base.tentacle_length * scale,
-        tentacle_radius: base.tentacle_radius * scale,
-        manubrium_length: base.manubrium_length * scale,
-        manubrium_radius: base.manubrium_radius * scale,
-        oral_arm_length: base.oral_arm_length * scale,
-        oral_arm_width: base.oral_arm_width * scale,
-        ..base.clone()
-    };
+    let diameter = base.diameter * scale;
     Species {
-        contraction_frequency: resized.natural_pulse_rate(),
-        ..resized
+        name: format!("{} {:.0} mm", base.name, diameter * 1000.0),
+        ..base.resized(diameter)
     }
 }
 

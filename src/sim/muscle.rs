@@ -324,16 +324,6 @@ mod tests {
     }
 
     #[test]
-    fn the_natural_rate_falls_as_the_root_of_the_size() {
-        let s = Species::aurelia();
-        let larger = Species {
-            diameter: 4.0 * s.diameter,
-            ..s.clone()
-        };
-        assert!((larger.natural_pulse_rate() - 0.5 * s.natural_pulse_rate()).abs() < 1e-6);
-    }
-
-    #[test]
     fn the_paper_margin_waits_a_fifth_and_takes_four_fifths_of_the_window() {
         let d = drive(1.0);
         let window = 1.0 - d.duty;

@@ -52,6 +52,32 @@ impl Species {
         self.natural_frequency * (self.natural_diameter / self.diameter).sqrt()
     }
 
+    /// The same animal grown (or shrunk) to a bell `diameter` wide, m: every length of its
+    /// body scaled alike, the plate bending of its mesoglea as the thickness cubed (per
+    /// the same 2 mm hinge), and beating at its animal's own rate for that size
+    /// ([`Self::natural_pulse_rate`]). Materials, water, shares and the box in diameters
+    /// stay as they are. Not validated: a size outside the limits is the caller's to check.
+    pub fn resized(&self, diameter: f32) -> Species {
+        let scale = diameter / self.diameter;
+        let grown = Species {
+            diameter,
+            height: self.height * scale,
+            thickness: self.thickness * scale,
+            angular_stiffness: self.angular_stiffness * scale.powi(3),
+            tentacle_length: self.tentacle_length * scale,
+            tentacle_radius: self.tentacle_radius * scale,
+            manubrium_length: self.manubrium_length * scale,
+            manubrium_radius: self.manubrium_radius * scale,
+            oral_arm_length: self.oral_arm_length * scale,
+            oral_arm_width: self.oral_arm_width * scale,
+            ..self.clone()
+        };
+        Species {
+            contraction_frequency: grown.natural_pulse_rate(),
+            ..grown
+        }
+    }
+
     /// The bell's cycle over its animal's natural one, `natural_pulse_rate /
     /// contraction_frequency`: above 1 it beats slower than its own rate. With the paper's
     /// [`MuscleTiming::Cycle`] always 1: its stroke is a share of whatever cycle it beats.

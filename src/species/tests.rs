@@ -225,3 +225,61 @@ fn the_animals_mesoglea_keeps_its_viscosity_at_any_pulse_rate() {
     let ratio = cycle_faster.mesoglea_damping_time() / cycle.mesoglea_damping_time();
     assert!((ratio - 0.5).abs() < 1e-6, "{ratio}");
 }
+
+#[test]
+fn the_natural_rate_falls_as_the_root_of_the_size() {
+    let s = Species::aurelia();
+    let larger = Species {
+        diameter: 4.0 * s.diameter,
+        ..s.clone()
+    };
+    assert!((larger.natural_pulse_rate() - 0.5 * s.natural_pulse_rate()).abs() < 1e-6);
+}
+
+/// Every shipped animal resized: each length of its body scaled, its mesoglea's plate
+/// bending as the cube, beating at its own rate for the new size; everything else (its
+/// materials, its box in diameters, its shares) kept. Resized to its own size, itself.
+#[test]
+fn a_resized_animal_keeps_its_shape_and_beats_at_its_rate_for_the_size() {
+    for s in [Species::aurelia(), Species::aequorea(), Species::sarsia()] {
+        assert_eq!(s.resized(s.diameter), s, "{}", s.name);
+        let big = s.resized(2.5 * s.diameter);
+        let close = |a: f32, b: f32| (a - b).abs() <= 1e-5 * b.abs();
+        for (name, grown, own, power) in [
+            ("height", big.height, s.height, 1),
+            ("thickness", big.thickness, s.thickness, 1),
+            ("tentacle_length", big.tentacle_length, s.tentacle_length, 1),
+            ("tentacle_radius", big.tentacle_radius, s.tentacle_radius, 1),
+            (
+                "manubrium_length",
+                big.manubrium_length,
+                s.manubrium_length,
+                1,
+            ),
+            ("oral_arm_length", big.oral_arm_length, s.oral_arm_length, 1),
+            (
+                "angular_stiffness",
+                big.angular_stiffness,
+                s.angular_stiffness,
+                3,
+            ),
+        ] {
+            assert!(
+                close(grown, own * 2.5f32.powi(power)),
+                "{}: {name} {grown} from {own}",
+                s.name
+            );
+        }
+        assert!(close(
+            big.contraction_frequency,
+            s.natural_pulse_rate() / 2.5f32.sqrt()
+        ));
+        assert_eq!(big.contraction_frequency, big.natural_pulse_rate());
+        assert_eq!(big.cycle_stretch(), 1.0, "{}: at its own rate", s.name);
+        assert_eq!(
+            (big.elastic_modulus, big.domain_diameters, big.muscle_extent),
+            (s.elastic_modulus, s.domain_diameters, s.muscle_extent)
+        );
+        assert_eq!(big.validate(), Ok(()), "{}", s.name);
+    }
+}
