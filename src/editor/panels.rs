@@ -91,6 +91,7 @@ pub(super) fn species_window(
                     let _ = editor.save(path);
                 }
             });
+            whole_animal(ui, &mut editor, &mut assets);
             if let Some(status) = editor.status() {
                 ui.label(status);
             }
@@ -109,6 +110,33 @@ pub(super) fn species_window(
             level_of_detail(ui, &mut settings);
         });
     Ok(())
+}
+
+/// The whole animal's size: dragged, every length of its body grows with the bell and
+/// its pulse rate follows (the `diameter` slider below moves the bell's width alone).
+fn whole_animal(ui: &mut egui::Ui, editor: &mut SpeciesEditor, assets: &mut Assets<Species>) {
+    let mut millimetres = 1000.0 * editor.draft().diameter;
+    let limit = crate::species::limits::of("diameter").map_or(0.002..=1.0, |l| l.min..=l.max);
+    let range = (1000.0 * *limit.start() as f32)..=(1000.0 * *limit.end() as f32);
+    let dragged = ui
+        .horizontal(|ui| {
+            ui.label("whole animal");
+            ui.add(
+                egui::DragValue::new(&mut millimetres)
+                    .range(range)
+                    .speed(0.2)
+                    .suffix(" mm"),
+            )
+            .on_hover_text(
+                "every length of the body scaled, at the animal's pulse rate for the size",
+            )
+            .changed()
+        })
+        .inner;
+    if dragged {
+        // An invalid size is kept in the draft and shown above the sliders.
+        let _ = editor.resize(millimetres / 1000.0, assets);
+    }
 }
 
 /// The plugin settings shared by all jellyfish (drawing only: the physics belongs to each

@@ -83,6 +83,23 @@ impl SpeciesEditor {
         Ok(())
     }
 
+    /// Grows or shrinks the whole animal to a bell `diameter` wide, m
+    /// ([`Species::resized`]: every length of its body scaled, beating at its own rate for
+    /// the size), and applies it; a size outside the limits is shown as the draft's error.
+    pub fn resize(
+        &mut self,
+        diameter: f32,
+        assets: &mut Assets<Species>,
+    ) -> Result<(), SpeciesError> {
+        self.draft = self.draft.resized(diameter);
+        self.status = Some(format!(
+            "grown to {:.1} mm, beating at {:.2} Hz",
+            1000.0 * diameter,
+            self.draft.contraction_frequency
+        ));
+        self.apply(assets)
+    }
+
     /// Puts the selected species back to its preset (as first loaded), draft and asset.
     pub fn reset(&mut self, assets: &mut Assets<Species>) {
         let Some(preset) = self.selected.and_then(|id| self.presets.get(&id)) else {

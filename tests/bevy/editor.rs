@@ -1,6 +1,7 @@
 //! The species editor without a window: its parameter table covers every field of
 //! `Species` with sliders that hold the shipped species, and its session applies valid
-//! drafts to living jellyfish, refuses invalid ones, resets to presets and saves files.
+//! drafts to living jellyfish, refuses invalid ones, grows the whole animal, resets to
+//! presets and saves files.
 
 use crate::common::app::Headless;
 use crate::common::shipped_species;
@@ -312,4 +313,34 @@ fn an_invalid_draft_is_not_saved() {
         assert!(editor.status().unwrap().contains("contraction_ratio"));
     });
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "(name: \"Kept\")");
+}
+
+#[test]
+fn the_whole_animal_grows_and_beats_at_its_rate_for_the_size() {
+    let (mut app, h, e) = app();
+    let small = app
+        .world()
+        .resource::<Assets<Species>>()
+        .get(&h)
+        .unwrap()
+        .clone();
+    let grown = small.resized(2.0 * small.diameter);
+    edit(&mut app, |editor, assets| {
+        editor.resize(2.0 * small.diameter, assets).unwrap();
+        assert_eq!(assets.get(&h).unwrap(), &grown);
+        assert!((grown.height - 2.0 * small.height).abs() < 1e-7);
+        assert!(grown.contraction_frequency < small.contraction_frequency);
+        let status = editor.status().unwrap();
+        assert!(status.starts_with("grown to 80.0 mm"), "{status}");
+        // Beyond the limits: refused by name, the asset as it was.
+        let error = editor.resize(5.0, assets).unwrap_err();
+        assert_eq!(error.field(), Some("diameter"));
+        assert_eq!(assets.get(&h).unwrap(), &grown);
+    });
+    frames(&mut app, 2);
+    let s = simulated(&app, e);
+    assert_eq!(
+        (s.diameter, s.contraction_frequency),
+        (grown.diameter, grown.contraction_frequency)
+    );
 }
