@@ -93,7 +93,7 @@ impl SpeciesEditor {
     ) -> Result<(), SpeciesError> {
         self.draft = self.draft.resized(diameter);
         self.status = Some(format!(
-            "grown to {:.1} mm, beating at {:.2} Hz",
+            "the whole animal at {:.1} mm, beating at {:.2} Hz",
             1000.0 * diameter,
             self.draft.contraction_frequency
         ));
