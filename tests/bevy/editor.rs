@@ -331,7 +331,10 @@ fn the_whole_animal_grows_and_beats_at_its_rate_for_the_size() {
         assert!((grown.height - 2.0 * small.height).abs() < 1e-7);
         assert!(grown.contraction_frequency < small.contraction_frequency);
         let status = editor.status().unwrap();
-        assert!(status.starts_with("the whole animal at 80.0 mm"), "{status}");
+        assert!(
+            status.starts_with("the whole animal at 80.0 mm"),
+            "{status}"
+        );
         // Beyond the limits: refused by name, the asset as it was.
         let error = editor.resize(5.0, assets).unwrap_err();
         assert_eq!(error.field(), Some("diameter"));
