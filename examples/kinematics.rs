@@ -9,8 +9,9 @@
 //! and the pulse rate set to the animal's at that size, with its refill's slowest speed
 //! too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
-//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--set field=value …]`
-//! (`--set` changes every species, the paper's and the resized moon jellies too).
+//! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--finer N] [--set field=value …]`
+//! (`--set` changes every species, the paper's and the resized moon jellies too; `--finer`
+//! takes N times each species' steps, to see what its own step does to the stroke).
 
 #[path = "common/species.rs"]
 mod common;
@@ -19,6 +20,7 @@ mod common;
 mod plot;
 
 use bevy_jellyfish::shape::profile::Profile;
+use bevy_jellyfish::sim::clock::FixedClock;
 use bevy_jellyfish::{SliceSim, Species};
 use common::{overrides, shipped_species, with_overrides};
 use plot::{Chart, Series};
@@ -38,6 +40,8 @@ struct Sample {
     /// The bell's outline (its exumbrella) at its widest.
     widest: f32,
     height: f32,
+    /// The subumbrella's strain ([`SliceSim::meridian_strain`]).
+    strain: f32,
 }
 
 /// The margin's width, the outline's widest (the subumbrella given its mesoglea, as the
@@ -57,10 +61,15 @@ fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32) {
     (margin, widest, height)
 }
 
-/// `strokes` strokes from rest, a sample after every fixed step. A slice that had to
-/// recover from a blow-up or a crossed outline is said on stderr.
-fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
+/// `strokes` strokes from rest, a sample after every fixed step (`finer` times the
+/// species' own steps a cycle). A slice that had to recover from a blow-up or a crossed
+/// outline is said on stderr.
+fn from_rest(species: &Species, strokes: u32, finer: u32) -> Vec<Sample> {
     let mut sim = SliceSim::new(species).expect("valid species");
+    if finer > 1 {
+        let steps = SliceSim::steps_per_cycle(species) * finer;
+        sim.set_clock(FixedClock::new(species.period(), steps));
+    }
     let d = species.diameter;
     let mut samples = Vec::new();
     let mut profile = Profile::default();
@@ -79,6 +88,7 @@ fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
                 margin: margin / d,
                 widest: widest / d,
                 height: height / d,
+                strain: sim.meridian_strain(),
             });
             time = sim.time();
             distance = x;
@@ -91,13 +101,13 @@ fn from_rest(species: &Species, strokes: u32) -> Vec<Sample> {
 }
 
 /// Each of `species` from rest for `strokes` strokes, one thread each.
-fn from_rest_all(species: Vec<Species>, strokes: u32) -> Vec<(Species, Vec<Sample>)> {
+fn from_rest_all(species: Vec<Species>, strokes: u32, finer: u32) -> Vec<(Species, Vec<Sample>)> {
     std::thread::scope(|scope| {
         let handles: Vec<_> = species
             .into_iter()
             .map(|s| {
                 scope.spawn(move || {
-                    let samples = from_rest(&s, strokes);
+                    let samples = from_rest(&s, strokes, finer);
                     (s, samples)
                 })
             })
@@ -138,6 +148,11 @@ fn contracted(samples: &[Sample], k: u32) -> (f32, f32, f32) {
     cycle(samples, k).fold((f32::MAX, f32::MAX, 0.0f32), |(m, w, h), (_, x)| {
         (m.min(x.margin), w.min(x.widest), h.max(x.height))
     })
+}
+
+/// The subumbrella's greatest strain over stroke `k`.
+fn stretched(samples: &[Sample], k: u32) -> f32 {
+    cycle(samples, k).fold(f32::MIN, |m, (_, x)| m.max(x.strain))
 }
 
 /// A species with every length times `scale`, beating at its animal's pulse rate for that
@@ -190,6 +205,12 @@ fn main() {
         .max(3);
     let out = PathBuf::from(value("--out").map_or("docs", |v| v.as_str()));
     let under_way = strokes.saturating_sub(2).max(1);
+    // The species' own steps, or that many times more (a time-step check: see
+    // `docs/numerics.md`, "Time step").
+    let finer: u32 = value("--finer")
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1)
+        .max(1);
 
     let overrides = overrides(&args);
     let mut species = shipped_species();
@@ -198,12 +219,12 @@ fn main() {
         .into_iter()
         .map(|s| with_overrides(s, &overrides))
         .collect();
-    let runs = from_rest_all(species, strokes);
+    let runs = from_rest_all(species, strokes, finer);
 
     println!(
-        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted (rest) |"
+        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted (rest) | subumbrella stretched |"
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     for (s, samples) in &runs {
         let strokes = per_stroke(samples);
         let steady = under_way_per_stroke(samples);
@@ -211,10 +232,11 @@ fn main() {
         let (margin, widest, height) = contracted(samples, under_way);
         let first: Vec<String> = strokes.iter().take(3).map(|d| format!("{d:.3}")).collect();
         println!(
-            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} ({:.2}) |",
+            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} ({:.2}) | {:+.0}% |",
             s.name,
             first.join(", "),
             samples[0].height,
+            100.0 * stretched(samples, under_way),
         );
     }
 
@@ -233,6 +255,7 @@ fn main() {
             .chain([0.5, 1.0, 2.0].map(|k| resized(&aequorea, k)))
             .collect(),
         strokes,
+        finer,
     );
     println!(
         "\n| at another size | pulse rate (Hz) | D per stroke, under way | speed (mm/s) | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted |"

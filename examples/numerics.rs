@@ -29,6 +29,9 @@ struct Run {
     /// CPU seconds per simulated second.
     cost: f64,
     recoveries: u32,
+    /// The subumbrella's least and greatest strain over cycles `from..to`
+    /// ([`SliceSim::meridian_strain`]).
+    meridian: (f32, f32),
 }
 
 impl Run {
@@ -60,11 +63,16 @@ fn swim_in_steps(species: &Species, finer: u32, frame: f32, from: u32, to: u32) 
     let mut boundaries = vec![0.0f64];
     let clock = Instant::now();
     let mut frames = 0u64;
+    let mut meridian = (f32::MAX, f32::MIN);
     while boundaries.len() <= to as usize {
         frames += 1;
         sim.advance_with(frame, |sim| {
             if sim.phase() == 0.0 {
                 boundaries.push(sim.swim_distance() as f64);
+            }
+            if boundaries.len() > from as usize {
+                let strain = sim.meridian_strain();
+                meridian = (meridian.0.min(strain), meridian.1.max(strain));
             }
         });
     }
@@ -76,6 +84,7 @@ fn swim_in_steps(species: &Species, finer: u32, frame: f32, from: u32, to: u32) 
             .collect(),
         cost,
         recoveries: sim.recoveries(),
+        meridian,
     }
 }
 
@@ -211,23 +220,50 @@ fn convergence(species: &[Species], from: u32, to: u32) {
 }
 
 fn timestep(species: &[Species], from: u32, to: u32) {
+    const FINER: [u32; 5] = [1, 2, 4, 8, 16];
     println!(
         "\n### Time step: swim per cycle (cycles {from}–{to}) with the species' fixed step, \
-         and 2, 4 and 8 times finer (60 Hz frames)\n"
+         and 2, 4, 8 and 16 times finer (60 Hz frames)\n"
     );
-    println!("| species (grid, steps per cycle) | 1× | 2× | 4× | 8× | spread |");
-    println!("|---|---|---|---|---|---|");
-    for s in species {
-        let runs = parallel(vec![1, 2, 4, 8], |&k| {
-            swim_in_steps(s, k, 1.0 / 60.0, from, to)
-        });
-        let label = format!(
+    println!("| species (grid, steps per cycle) | 1× | 2× | 4× | 8× | 16× | spread |");
+    println!("|---|---|---|---|---|---|---|");
+    let runs: Vec<Vec<Run>> = species
+        .iter()
+        .map(|s| {
+            parallel(FINER.to_vec(), |&k| {
+                swim_in_steps(s, k, 1.0 / 60.0, from, to)
+            })
+        })
+        .collect();
+    let label = |s: &Species| {
+        format!(
             "{} ({}, {})",
             s.name,
             s.grid_resolution,
             SliceSim::steps_per_cycle(s)
-        );
-        row(&label, &runs);
+        )
+    };
+    for (s, runs) in species.iter().zip(&runs) {
+        row(&label(s), runs);
+    }
+    println!(
+        "\nThe subumbrella's strain over the same cycles, least and greatest \
+         (`SliceSim::meridian_strain`):\n"
+    );
+    println!("| species | 1× | 2× | 4× | 8× | 16× |");
+    println!("|---|---|---|---|---|---|");
+    for (s, runs) in species.iter().zip(&runs) {
+        let cells: Vec<String> = runs
+            .iter()
+            .map(|r| {
+                format!(
+                    "{:+.1}% to {:+.1}%",
+                    100.0 * r.meridian.0,
+                    100.0 * r.meridian.1
+                )
+            })
+            .collect();
+        println!("| {} | {} |", label(s), cells.join(" | "));
     }
 }
 
@@ -276,6 +312,7 @@ fn crumples(species: &[Species], cycles: u32) {
             per_cycle,
             cost: 0.0,
             recoveries: sim.recoveries(),
+            meridian: (0.0, 0.0),
         };
         format!(
             "| {} ({}) | {crumpled} of {samples} | {smallest:.2} | {:.1}% | {} | {:.3} ({:.0}%) |",

@@ -322,6 +322,17 @@ impl SliceSim {
         Outline::of(self.body.bell_points(), signed_area(&self.rest_bell))
     }
 
+    /// How much longer the subumbrella is from margin to margin than at rest (0 at its
+    /// rest length, 0.1 a tenth longer). The stroke's loads stretch the mesoglea by about
+    /// a percent; what more a slice shows is its step's: the water carries the points a
+    /// step before their springs' force reaches it, so the meridian gives by what one
+    /// step's flow stretches it (`docs/numerics.md`, "Time step").
+    pub fn meridian_strain(&self) -> f32 {
+        let length =
+            |points: &[Vec2]| -> f32 { points.windows(2).map(|w| w[0].distance(w[1])).sum() };
+        length(self.body.bell_points()) / length(&self.rest_bell) - 1.0
+    }
+
     /// Contraction cycle phase of the state in [0, 1).
     pub fn phase(&self) -> f32 {
         self.clock.phase()
