@@ -429,6 +429,58 @@ fn species_edits_reach_a_living_slice(geometry: SliceGeometry) {
     );
 }
 
+in_both_geometries!(fn an_edit_that_moves_the_points_rebuilds_the_slice);
+/// The band's width sets how far apart the bell's points sit, and a fringe added or taken
+/// away adds or takes away points: a living slice so edited starts again at rest in its
+/// place, as one given a new size does, instead of forcing the old positions onto the new
+/// body (a narrower band on a living moon jelly indexed past its points).
+fn an_edit_that_moves_the_points_rebuilds_the_slice(geometry: SliceGeometry) {
+    let base = aurelia(geometry);
+    let bare = Species {
+        tentacle_count: 0,
+        ..base.clone()
+    };
+    let edits = [
+        (
+            base.clone(),
+            Species {
+                boundary_width: 0.1,
+                ..base.clone()
+            },
+        ),
+        (
+            base.clone(),
+            Species {
+                boundary_width: 0.6,
+                ..base.clone()
+            },
+        ),
+        (base.clone(), bare.clone()),
+        (bare, base.clone()),
+    ];
+    for (from, to) in edits {
+        let mut sim = SliceSim::new(&from).unwrap();
+        run_cycles(&mut sim, 0.5);
+        let (distance, world) = (sim.swim_distance(), sim.bell_centroid_world());
+        sim.set_species(&to).unwrap();
+        let fresh = SliceSim::new(&to).unwrap();
+        assert_eq!(sim.bell_points().len(), fresh.bell_points().len());
+        assert_eq!(
+            sim.body().tensions().count(),
+            fresh.body().tensions().count()
+        );
+        assert_eq!(sim.swim_distance(), distance, "the distance is kept");
+        assert!(
+            (sim.bell_centroid_world() - world).length() < 1e-4,
+            "and the place"
+        );
+        run_cycles(&mut sim, 1.0);
+        assert_eq!(sim.recoveries(), 0);
+        assert!(sim.bell_points().iter().all(|p| p.is_finite()));
+        assert!(!sim.outline().crumpled(), "{:?}", sim.outline());
+    }
+}
+
 // --- Long checks: run in release with `--ignored --nocapture`; each prints its figures. ---
 
 /// Distance per cycle in diameters for cycles `from..to`, at 60 Hz frames, measured at

@@ -140,6 +140,13 @@ impl Body {
         }
     }
 
+    /// Whether `other` has the same points, laid out alike (its positions fit this body).
+    pub(crate) fn same_layout(&self, other: &Body) -> bool {
+        self.points.len() == other.points.len()
+            && self.bell == other.bell
+            && self.tentacles == other.tentacles
+    }
+
     /// The subumbrella's points, left margin to right margin.
     pub(crate) fn bell_points(&self) -> &[Vec2] {
         &self.points[self.bell.clone()]

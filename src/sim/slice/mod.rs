@@ -436,18 +436,30 @@ impl SliceSim {
     }
 
     /// Applies new parameters to a living slice. Muscle timing, stiffness and water take
-    /// effect at once; a change of geometry or grid rebuilds the slice at rest in place,
-    /// keeping time, distance and world position.
+    /// effect at once; a change of geometry, grid, size, band or of the body's points (a
+    /// fringe added or taken away) rebuilds the slice at rest in place, keeping time,
+    /// distance and world position.
     pub fn set_species(&mut self, species: &Species) -> Result<(), SpeciesError> {
         species.validate()?;
-        let rebuild = species.grid_resolution != self.species.grid_resolution
+        let reshaped = species.grid_resolution != self.species.grid_resolution
             || species.diameter != self.species.diameter
             || species.height != self.species.height
             || species.domain_diameters != self.species.domain_diameters
             || species.tentacle_length != self.species.tentacle_length
             || species.thickness != self.species.thickness
-            || species.slice_geometry != self.species.slice_geometry;
-        if rebuild {
+            || species.slice_geometry != self.species.slice_geometry
+            // The band's width sets the points' spacing.
+            || Self::kernel_stretch(species) != Self::kernel_stretch(&self.species);
+        // Same topology: keep positions, take the new stiffnesses (rings about the live
+        // axis). A body laid out otherwise (a fringe added or taken away) starts afresh.
+        let origin = match species.slice_geometry {
+            SliceGeometry::Planar => Vec2::ZERO,
+            SliceGeometry::Axisymmetric => Vec2::X * self.fluid.axis(),
+        };
+        let kept = (!reshaped)
+            .then(|| Body::new(species, origin, self.fluid.h))
+            .filter(|body| body.same_layout(&self.body));
+        let Some(mut rebuilt) = kept else {
             let mut fresh = SliceSim::new(species)?;
             fresh.clock = self
                 .clock
@@ -459,15 +471,7 @@ impl SliceSim {
             fresh.recoveries = self.recoveries;
             *self = fresh;
             return Ok(());
-        }
-        let h = self.fluid.h;
-        // Same topology: keep positions, take the new stiffnesses (rings about the live
-        // axis).
-        let origin = match species.slice_geometry {
-            SliceGeometry::Planar => Vec2::ZERO,
-            SliceGeometry::Axisymmetric => Vec2::X * self.fluid.axis(),
         };
-        let mut rebuilt = Body::new(species, origin, h);
         rebuilt.points.clone_from(&self.body.points);
         self.body = rebuilt;
         self.fluid.nu = species.kinematic_viscosity();

@@ -32,6 +32,22 @@ fn a_species_edited_at_run_time_reaches_living_jellyfish() {
     );
     run(&mut app, 3);
     assert!(!umbrella_positions(&app, e).is_empty());
+    // A narrower band (the bell's points closer together) and no fringe (fewer points):
+    // the slice starts again at rest in its place, and the meshes follow.
+    {
+        let mut assets = app.world_mut().resource_mut::<Assets<Species>>();
+        let mut s = assets.get_mut(&h).unwrap();
+        s.boundary_width = 0.1;
+        s.tentacle_count = 0;
+    }
+    run(&mut app, 30);
+    let sim = slice(&app, e).sim().unwrap();
+    assert_eq!(sim.species().boundary_width, 0.1);
+    assert_eq!(sim.species().tentacle_count, 0);
+    assert_eq!(sim.recoveries(), 0);
+    let umbrella = umbrella_positions(&app, e);
+    assert!(!umbrella.is_empty());
+    assert!(umbrella.iter().flatten().all(|x| x.is_finite()));
 }
 
 #[test]
