@@ -337,43 +337,91 @@ fn random_species_run_inside_the_limits_and_are_refused_outside() {
 #[test]
 #[ignore = "long: every field of every shipped species and the paper's at its least, its greatest and a value between, on a living slice"]
 /// The editor changes one field at a time on living jellyfish: any field at either end of
-/// its range or between, given to a living slice of each shipped species and the paper's model, is either
+/// its range or between, or any of the choices (advection, kernel, geometry, muscle law
+/// and timing, the fringe's drag), given to a living slice of each shipped species and the paper's model, is either
 /// refused naming a field (a limit joining fields), leaving the slice as it was, or runs
 /// on finite, its outline whole. (A narrower band, which moves the bell's points closer
 /// together, once indexed past the body's points.)
 fn one_field_edited_on_a_living_slice_is_refused_or_runs_on() {
+    use bevy_jellyfish::species::{FringeDrag, MuscleLaw, MuscleTiming};
     let mut rng = Rng(0x5eed_ed17);
     let mut species = common::shipped_species();
     species.push(Species::paper());
     let (mut applied, mut refused) = (0, 0);
+    let mut edit = |base: &Species, edited: &Species, what: String| {
+        let mut sim = SliceSim::new(base).unwrap();
+        sim.advance(0.3);
+        match sim.set_species(edited) {
+            Ok(()) => {
+                applied += 1;
+                for _ in 0..10 {
+                    sim.advance(1.0 / 60.0);
+                }
+                assert!(
+                    sim.bell_points().iter().all(|p| p.is_finite()),
+                    "{what}: the bell is not finite"
+                );
+                assert!(sim.fluid_speed_max().is_finite(), "{what}: the water");
+            }
+            Err(e) => {
+                refused += 1;
+                let field = e.field().unwrap_or_else(|| panic!("{what}: {e}"));
+                assert!(e.to_string().contains(field), "{what}: {e}");
+                assert_eq!(sim.species(), base, "{what}: refused, yet changed");
+            }
+        }
+    };
     for base in &species {
         for l in LIMITS {
             for value in [l.min, l.max, inside(&mut rng, l)] {
                 let mut edited = base.clone();
                 set(&mut edited, l.field, value);
-                let mut sim = SliceSim::new(base).unwrap();
-                sim.advance(0.3);
-                let what = format!("{} with {} edited", base.name, l.field);
-                match sim.set_species(&edited) {
-                    Ok(()) => {
-                        applied += 1;
-                        for _ in 0..10 {
-                            sim.advance(1.0 / 60.0);
-                        }
-                        assert!(
-                            sim.bell_points().iter().all(|p| p.is_finite()),
-                            "{what}: the bell is not finite"
-                        );
-                        assert!(sim.fluid_speed_max().is_finite(), "{what}: the water");
-                    }
-                    Err(e) => {
-                        refused += 1;
-                        let field = e.field().unwrap_or_else(|| panic!("{what}: {e}"));
-                        assert!(e.to_string().contains(field), "{what}: {e}");
-                        assert_eq!(sim.species(), base, "{what}: refused, yet changed");
-                    }
-                }
+                edit(
+                    base,
+                    &edited,
+                    format!("{} with {} = {value}", base.name, l.field),
+                );
             }
+        }
+        // The choices the editor offers as buttons.
+        let choices = Advection::ALL
+            .map(|advection| Species {
+                advection,
+                ..base.clone()
+            })
+            .into_iter()
+            .chain(Kernel::ALL.map(|kernel| Species {
+                kernel,
+                ..base.clone()
+            }))
+            .chain(SliceGeometry::ALL.map(|slice_geometry| Species {
+                slice_geometry,
+                ..base.clone()
+            }))
+            .chain(MuscleLaw::ALL.map(|muscle_law| Species {
+                muscle_law,
+                ..base.clone()
+            }))
+            .chain(MuscleTiming::ALL.map(|muscle_timing| Species {
+                muscle_timing,
+                ..base.clone()
+            }))
+            .chain(FringeDrag::ALL.map(|fringe_drag| Species {
+                fringe_drag,
+                ..base.clone()
+            }));
+        for edited in choices {
+            let what = format!(
+                "{} as {:?}, {:?}, {:?}, {:?}, {:?}, {:?}",
+                base.name,
+                edited.advection,
+                edited.kernel,
+                edited.slice_geometry,
+                edited.muscle_law,
+                edited.muscle_timing,
+                edited.fringe_drag
+            );
+            edit(base, &edited, what);
         }
     }
     println!("{applied} single-field edits applied to living slices, {refused} refused");
