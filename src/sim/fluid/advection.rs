@@ -183,9 +183,8 @@ fn sweep<const MODE: u8>(
         // The same, four faces at a time.
         let feet = |i: usize| {
             let (w, a, b) = (&u_row[i..][..4], &v0[i - 1..][..5], &v1[i - 1..][..5]);
-            let x = std::array::from_fn(|k| cell(i + k) - s * w[k]);
-            let y =
-                std::array::from_fn(|k| cell(j) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1]));
+            let x = four(|k| cell(i + k) - s * w[k]);
+            let y = four(|k| cell(j) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1]));
             (x, y)
         };
         let faces = 1..traced.min(n);
@@ -210,16 +209,22 @@ fn sweep<const MODE: u8>(
         };
         let feet = |i: usize| {
             let (w, a, b) = (&v_row[i..][..4], &u0[i..][..5], &u1[i..][..5]);
-            let x = std::array::from_fn(|k| {
-                cell(i + k) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1])
-            });
-            let y = std::array::from_fn(|k| cell(j) - s * w[k]);
+            let x = four(|k| cell(i + k) - s * 0.25 * (a[k] + a[k + 1] + b[k] + b[k + 1]));
+            let y = four(|k| cell(j) - s * w[k]);
             (x, y)
         };
         let out = &mut out_v[row..][..n];
         let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
         trace_row::<MODE>(src[1], [n, n + 1], 0..traced, (foot, feet), out, bounds);
     }
+}
+
+/// `[f(0), f(1), f(2), f(3)]`, written out: `std::array::from_fn` left each lane a call
+/// through its closure (a twentieth of a step's instructions), where these compile to
+/// four-wide arithmetic.
+#[inline(always)]
+fn four(f: impl Fn(usize) -> f32) -> [f32; 4] {
+    [f(0), f(1), f(2), f(3)]
 }
 
 /// Samples `field` (`[nx, ny]` columns and rows) at the foot of each face in `faces` of

@@ -54,10 +54,29 @@ impl Fluid {
     }
 }
 
+/// max |x| over `field`, NaN if any `x` is NaN.
+///
+/// On x86_64 four SSE2 maxima of four lanes each (`maxps` on the magnitudes, a running
+/// "unordered" mask for NaN): the magnitudes are non-negative, so their float order is
+/// their bit order and the result is [`largest_magnitude_bits`]' to the bit, at half its
+/// cost (SSE2 has no unsigned integer maximum: that one takes five instructions a vector).
+fn largest_magnitude(field: &[f32]) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: SSE2 is in every x86-64 target's baseline, so it is always enabled.
+        unsafe { sse2::largest_magnitude(field) }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        largest_magnitude_bits(field)
+    }
+}
+
 /// max |x| over `field`, NaN if any `x` is NaN: on the bit patterns with the sign
 /// cleared, which order as the magnitudes do (every NaN above infinity), so the reduction
 /// is a plain integer maximum that vectorises, where `f32::max` (which skips NaN) does not.
-fn largest_magnitude(field: &[f32]) -> f32 {
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+fn largest_magnitude_bits(field: &[f32]) -> f32 {
     const LANES: usize = 8;
     let magnitude = |x: &f32| x.to_bits() & 0x7fff_ffff;
     let mut lanes = [0u32; LANES];
@@ -76,12 +95,61 @@ fn largest_magnitude(field: &[f32]) -> f32 {
     }
 }
 
+#[cfg(target_arch = "x86_64")]
+mod sse2 {
+    use std::arch::x86_64::*;
+
+    /// See [`super::largest_magnitude`].
+    #[target_feature(enable = "sse2")]
+    pub(super) fn largest_magnitude(field: &[f32]) -> f32 {
+        let sign = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
+        // Four running maxima, so that each waits only on its own last `maxps`.
+        let mut most = [_mm_setzero_ps(); 4];
+        let mut unordered = _mm_setzero_ps();
+        let mut blocks = field.chunks_exact(16);
+        for block in &mut blocks {
+            for (k, most) in most.iter_mut().enumerate() {
+                // SAFETY: `block` holds sixteen values, four at each `k`.
+                let x = _mm_and_ps(unsafe { _mm_loadu_ps(block[4 * k..].as_ptr()) }, sign);
+                unordered = _mm_or_ps(unordered, _mm_cmpunord_ps(x, x));
+                *most = _mm_max_ps(*most, x);
+            }
+        }
+        let most = _mm_max_ps(_mm_max_ps(most[0], most[1]), _mm_max_ps(most[2], most[3]));
+        let mut lanes = [0.0f32; 4];
+        // SAFETY: `lanes` holds four values.
+        unsafe { _mm_storeu_ps(lanes.as_mut_ptr(), most) };
+        let nan = _mm_movemask_ps(unordered) != 0;
+        let mut largest = lanes.into_iter().fold(0.0f32, f32::max);
+        for x in blocks.remainder() {
+            let x = x.abs();
+            if x.is_nan() {
+                return f32::NAN;
+            }
+            largest = largest.max(x);
+        }
+        if nan { f32::NAN } else { largest }
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::largest_magnitude;
+    use super::{largest_magnitude, largest_magnitude_bits};
 
     #[test]
     fn the_largest_magnitude_is_exact_and_sees_nan_and_infinity() {
+        // Every length up to three blocks and a remainder, with the largest anywhere.
+        for len in 0..53 {
+            for at in 0..len {
+                let mut field: Vec<f32> =
+                    (0..len).map(|k| ((k * 29) % 17) as f32 * -0.03).collect();
+                field[at] = -7.5;
+                assert_eq!(largest_magnitude(&field).to_bits(), 7.5f32.to_bits());
+                assert_eq!(largest_magnitude_bits(&field).to_bits(), 7.5f32.to_bits());
+                field[at] = f32::NAN;
+                assert!(largest_magnitude(&field).is_nan(), "{len} {at}");
+            }
+        }
         let mut field: Vec<f32> = (0..203)
             .map(|k| ((k * 37) % 101) as f32 * 0.013 - 0.6)
             .collect();
