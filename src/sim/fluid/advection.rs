@@ -2,7 +2,9 @@
 //! from each face (Stam 1999), optionally corrected by MacCormack's forward–backward
 //! step or sampled by a limited bicubic (see [`Advection`]).
 
-use super::sampling::{cell, cubic_sample, cubic_sample4, linear_sample, linear_sample4, trace};
+use super::sampling::{
+    cell, cubic_sample, cubic_sample4, four, linear_sample, linear_sample4, trace,
+};
 use super::symmetry;
 use super::{Advection, Fluid};
 
@@ -217,14 +219,6 @@ fn sweep<const MODE: u8>(
         let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
         trace_row::<MODE>(src[1], [n, n + 1], 0..traced, (foot, feet), out, bounds);
     }
-}
-
-/// `[f(0), f(1), f(2), f(3)]`, written out: `std::array::from_fn` left each lane a call
-/// through its closure (a twentieth of a step's instructions), where these compile to
-/// four-wide arithmetic.
-#[inline(always)]
-fn four(f: impl Fn(usize) -> f32) -> [f32; 4] {
-    [f(0), f(1), f(2), f(3)]
 }
 
 /// Samples `field` (`[nx, ny]` columns and rows) at the foot of each face in `faces` of

@@ -180,14 +180,17 @@ mod sse2 {
             return None;
         }
         // Each lane's sixteen values: four runs of four, one bounds check.
-        let blocks = located.map(|(i, j, _, _)| &field[(j - 1) * nx + i - 1..][..3 * nx + 4]);
+        let blocks = super::four(|lane| {
+            let (i, j, _, _) = located[lane];
+            &field[(j - 1) * nx + i - 1..][..3 * nx + 4]
+        });
         let row = |lane: usize, b: usize| {
             let r = &blocks[lane][b * nx..][..4];
             // SAFETY: `r` holds the four values read.
             unsafe { _mm_loadu_ps(r.as_ptr()) }
         };
-        let wx = catmull_rom(vector(located.map(|l| l.2)));
-        let wy = catmull_rom(vector(located.map(|l| l.3)));
+        let wx = catmull_rom(vector(super::four(|lane| located[lane].2)));
+        let wy = catmull_rom(vector(super::four(|lane| located[lane].3)));
         let mut value = _mm_setzero_ps();
         // middle[row][column][lane]: the four nearest values, for the limiter.
         let mut middle = [[[0.0f32; 4]; 2]; 2];
@@ -203,7 +206,7 @@ mod sse2 {
         }
         let value = lanes(value);
         let [[below_0, below_1], [above_0, above_1]] = middle;
-        Some(std::array::from_fn(|lane| {
+        Some(super::four(|lane| {
             let nearest = [below_0[lane], below_1[lane], above_0[lane], above_1[lane]];
             super::within(value[lane], nearest)
         }))
@@ -226,7 +229,13 @@ mod sse2 {
             t,
         );
         let w3 = _mm_sub_ps(t3, t2);
-        [w0, w1, w2, w3].map(|w| _mm_mul_ps(k(0.5), w))
+        let half = k(0.5);
+        [
+            _mm_mul_ps(half, w0),
+            _mm_mul_ps(half, w1),
+            _mm_mul_ps(half, w2),
+            _mm_mul_ps(half, w3),
+        ]
     }
 
     /// Rows to columns: `[lane][column]` to `[column][lane]`.
@@ -254,7 +263,7 @@ mod sse2 {
     ) -> [(usize, usize, f32, f32); 4] {
         let [i, j, fx, fy] = located(nx, ny, x, y);
         let [i, j, fx, fy] = [lanes(i), lanes(j), lanes(fx), lanes(fy)];
-        std::array::from_fn(|lane| {
+        super::four(|lane| {
             // Whole numbers from 0 to the last but one: exact conversions.
             let whole = |v: f32| v as u32 as usize;
             (whole(i[lane]), whole(j[lane]), fx[lane], fy[lane])
@@ -305,6 +314,14 @@ mod sse2 {
             _mm_cvtss_f32(_mm_shuffle_ps::<0b11_11_11_11>(v, v)),
         ]
     }
+}
+
+/// `[f(0), f(1), f(2), f(3)]`, written out: `std::array::from_fn` and `[T; 4]::map` left
+/// each lane a call through its closure in the samplers' hot loops (a twentieth of a
+/// step's instructions), where these inline into four-wide arithmetic.
+#[inline(always)]
+pub(super) fn four<T>(f: impl Fn(usize) -> T) -> [T; 4] {
+    [f(0), f(1), f(2), f(3)]
 }
 
 /// The four by four values around cell `(i, j)` (from `i - 1, j - 1`), clamped to the
