@@ -75,7 +75,6 @@ fn largest_magnitude(field: &[f32]) -> f32 {
 /// max |x| over `field`, NaN if any `x` is NaN: on the bit patterns with the sign
 /// cleared, which order as the magnitudes do (every NaN above infinity), so the reduction
 /// is a plain integer maximum that vectorises, where `f32::max` (which skips NaN) does not.
-#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
 fn largest_magnitude_bits(field: &[f32]) -> f32 {
     const LANES: usize = 8;
     let magnitude = |x: &f32| x.to_bits() & 0x7fff_ffff;
@@ -119,16 +118,12 @@ mod sse2 {
         let mut lanes = [0.0f32; 4];
         // SAFETY: `lanes` holds four values.
         unsafe { _mm_storeu_ps(lanes.as_mut_ptr(), most) };
-        let nan = _mm_movemask_ps(unordered) != 0;
-        let mut largest = lanes.into_iter().fold(0.0f32, f32::max);
-        for x in blocks.remainder() {
-            let x = x.abs();
-            if x.is_nan() {
-                return f32::NAN;
-            }
-            largest = largest.max(x);
+        // The last few (under sixteen) by the bit-pattern reduction.
+        let rest = super::largest_magnitude_bits(blocks.remainder());
+        if _mm_movemask_ps(unordered) != 0 || rest.is_nan() {
+            return f32::NAN;
         }
-        if nan { f32::NAN } else { largest }
+        lanes.into_iter().fold(rest, f32::max)
     }
 }
 
