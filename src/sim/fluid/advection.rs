@@ -6,6 +6,8 @@ use super::sampling::{
     cell, cubic_sample, cubic_sample4, four, linear_sample, linear_sample4, trace,
 };
 use super::symmetry;
+#[cfg(target_arch = "x86_64")]
+use super::window::{self, avx::Carried};
 use super::{Advection, Fluid};
 
 impl Fluid {
@@ -172,6 +174,10 @@ fn sweep<const MODE: u8>(
         Some([bu, bv]) => [Some(bu), Some(bv)],
         None => [None, None],
     };
+    // Plain bilinear takes eight feet at a time where they lie near their faces
+    // (`window`): the same bits as below.
+    #[cfg(target_arch = "x86_64")]
+    let avx = window::avx::available();
     // u faces, (n + 1) × n: each one's own u, and v averaged from the four faces around it.
     for j in 0..n {
         let row = j * (n + 1);
@@ -191,6 +197,18 @@ fn sweep<const MODE: u8>(
         };
         let faces = 1..traced.min(n);
         let out = &mut out_u[row..][..n + 1];
+        #[cfg(target_arch = "x86_64")]
+        if MODE == LINEAR && avx {
+            let carried = Carried::U {
+                u: u_row,
+                v: [v0, v1],
+            };
+            let dims = [n + 1, n];
+            // SAFETY: this processor has AVX (asked above).
+            if unsafe { trace_windowed(src[0], dims, j, &faces, carried, s, foot, out) } {
+                continue;
+            }
+        }
         let bounds = bounds_u.as_deref_mut().map(|b| &mut b[row..][..n + 1]);
         trace_row::<MODE>(src[0], [n + 1, n], faces, (foot, feet), out, bounds);
     }
@@ -216,9 +234,53 @@ fn sweep<const MODE: u8>(
             (x, y)
         };
         let out = &mut out_v[row..][..n];
+        #[cfg(target_arch = "x86_64")]
+        if MODE == LINEAR && avx {
+            let carried = Carried::V {
+                v: v_row,
+                u: [u0, u1],
+            };
+            let dims = [n, n + 1];
+            // SAFETY: this processor has AVX (asked above).
+            if unsafe { trace_windowed(src[1], dims, j, &(0..traced), carried, s, foot, out) } {
+                continue;
+            }
+        }
         let bounds = bounds_v.as_deref_mut().map(|b| &mut b[row..][..n]);
         trace_row::<MODE>(src[1], [n, n + 1], 0..traced, (foot, feet), out, bounds);
     }
+}
+
+/// Plain bilinear with AVX: of the faces `faces` of row `j`, those at least a column
+/// inside the row go to the window eight at a time (`window::avx::linear_row`), the one
+/// or two at its ends one at a time (`foot`); `false`, and nothing done, where fewer than
+/// eight are inside.
+///
+/// # Safety
+/// The processor must have AVX (`window::avx::available`).
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn trace_windowed(
+    field: &[f32],
+    [nx, ny]: [usize; 2],
+    j: usize,
+    faces: &std::ops::Range<usize>,
+    carried: Carried,
+    s: f32,
+    foot: impl Fn(usize) -> (f32, f32),
+    out: &mut [f32],
+) -> bool {
+    let inside = faces.start.max(1)..faces.end.min(nx - 1);
+    if inside.len() < 8 {
+        return false;
+    }
+    for i in (faces.start..inside.start).chain(inside.end..faces.end) {
+        let (x, y) = foot(i);
+        out[i] = linear_sample(field, nx, ny, x, y);
+    }
+    // SAFETY: the caller vouches for AVX.
+    unsafe { window::avx::linear_row(field, [nx, ny], j, inside, carried, s, out) };
+    true
 }
 
 /// Samples `field` (`[nx, ny]` columns and rows) at the foot of each face in `faces` of

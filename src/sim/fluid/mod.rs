@@ -8,7 +8,8 @@
 //!
 //! One idea per file, so that another slice geometry can share them:
 //! - `advection`: the velocity carried along itself (semi-Lagrangian,
-//!   MacCormack or limited bicubic), on the samplers of `sampling`;
+//!   MacCormack or limited bicubic), on the samplers of `sampling` (and of `window`,
+//!   eight bilinear feet near their faces at a time);
 //! - `immersed`: where the bell meets the grid: points read velocities and spread forces
 //!   through one stencil;
 //! - `diffusion`: viscosity;
@@ -38,6 +39,7 @@ mod tests;
 #[cfg(test)]
 mod textbook;
 mod walls;
+mod window;
 
 pub(crate) use crate::species::{Advection, Kernel, SliceGeometry};
 pub(crate) use rings::{RINGS_SWEEP_LIMIT, Rings};

@@ -1,0 +1,273 @@
+//! Bilinear samples eight at a time where every foot lies within a cell of its own face.
+//!
+//! The fixed step keeps nearly every trace that short (Courant 0.5 at the jet's expected
+//! speed, `Species::steps_per_cycle`), so the four corners of each foot are among the
+//! faces of the three rows around its own row, each a column before, at or after its own.
+//! Those rows load as three vectors of eight each and every corner is chosen lane by lane,
+//! where the general sampler gathers sixteen values one at a time for every four feet.
+//! The cells, the fractions and the arithmetic are [`super::sampling::linear_sample`]'s,
+//! so the samples are its bits. x86-64 with AVX only (asked at run time): elsewhere, and
+//! for any eight of which one foot lies further out, the four-wide sampler.
+
+#[cfg(target_arch = "x86_64")]
+pub(super) mod avx {
+    use std::arch::x86_64::*;
+
+    /// Whether this processor runs [`linear_row`] (std caches the answer).
+    pub(in crate::sim::fluid) fn available() -> bool {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+
+    /// What carries one row of faces back to their feet: each face's own component, and
+    /// the other one averaged from the four faces around it in the rows either side, as
+    /// `advection::sweep` reads them.
+    #[derive(Clone, Copy)]
+    pub(in crate::sim::fluid) enum Carried<'a> {
+        /// A row of u faces: its u, and the v rows below and above it (face `i` averages
+        /// their columns `i − 1` and `i`).
+        U { u: &'a [f32], v: [&'a [f32]; 2] },
+        /// A row of v faces: its v, and the u rows below and above it (columns `i` and
+        /// `i + 1`).
+        V { v: &'a [f32], u: [&'a [f32]; 2] },
+    }
+
+    /// Samples `field` (`[nx, ny]`) at the feet of the faces `faces` of row `j`, traced
+    /// back `s` cells per unit velocity of `carried`, into `out`: each foot and sample
+    /// as `advection::sweep` and [`super::super::sampling::linear_sample`] make them one
+    /// at a time. Eight at a time from a window of the three rows around them where each
+    /// of the eight lies at most a cell before its face (on either axis) and less than
+    /// one after, and the window lies where that sampler's clamps do not reach; four at a
+    /// time by the general sampler where not. The last eight end the row, overlapping the
+    /// eight before where the count is not a multiple of eight (those faces get the same
+    /// values again). At least eight faces. Returns how many eights the window took.
+    #[target_feature(enable = "avx")]
+    pub(in crate::sim::fluid) fn linear_row(
+        field: &[f32],
+        [nx, ny]: [usize; 2],
+        j: usize,
+        faces: std::ops::Range<usize>,
+        carried: Carried,
+        s: f32,
+        out: &mut [f32],
+    ) -> usize {
+        use crate::sim::fluid::sampling::linear_sample4;
+        debug_assert!(faces.len() >= 8, "eight faces at least");
+        // The rows around this one, if inside the field (`locate` clamps rows to it and
+        // keeps a cell below the last but one).
+        let rows =
+            (j >= 1 && j + 2 <= ny).then(|| [j - 1, j, j + 1].map(|r| &field[r * nx..][..nx]));
+        // SAFETY: each load reads eight values of a slice of eight.
+        let load = |v: &[f32]| unsafe { _mm256_loadu_ps(v[..8].as_ptr()) };
+        let (step, quarter) = (_mm256_set1_ps(s), _mm256_set1_ps(s * 0.25));
+        // ((a + a′) + b) + b′ of the four faces around each, from column `k` on.
+        let around = |[a, b]: [&[f32]; 2], k: usize| {
+            let sum = _mm256_add_ps(load(&a[k..]), load(&a[k + 1..]));
+            _mm256_add_ps(_mm256_add_ps(sum, load(&b[k..])), load(&b[k + 1..]))
+        };
+        let one = _mm256_set1_ps(1.0);
+        // Whole numbers below 2²⁴: exact, and so are they plus or minus one.
+        let home_y = _mm256_set1_ps(j as u32 as f32);
+        let (before_y, after_y) = (_mm256_sub_ps(home_y, one), _mm256_add_ps(home_y, one));
+        let lane = _mm256_setr_ps(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
+        let mut taken = 0;
+        let mut i = faces.start;
+        loop {
+            let at = i.min(faces.end - 8);
+            let home_x = _mm256_add_ps(_mm256_set1_ps(at as u32 as f32), lane);
+            // Each foot: its face less the step times the velocity there.
+            let (x, y) = match carried {
+                Carried::U { u, v } => (
+                    _mm256_sub_ps(home_x, _mm256_mul_ps(step, load(&u[at..]))),
+                    _mm256_sub_ps(home_y, _mm256_mul_ps(quarter, around(v, at - 1))),
+                ),
+                Carried::V { v, u } => (
+                    _mm256_sub_ps(home_x, _mm256_mul_ps(quarter, around(u, at))),
+                    _mm256_sub_ps(home_y, _mm256_mul_ps(step, load(&v[at..]))),
+                ),
+            };
+            let (before_x, after_x) = (_mm256_sub_ps(home_x, one), _mm256_add_ps(home_x, one));
+            // Within reach on both axes (NaN compares false).
+            let near = _mm256_and_ps(
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GE_OQ>(x, before_x),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(x, after_x),
+                ),
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GE_OQ>(y, before_y),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(y, after_y),
+                ),
+            );
+            let out = &mut out[at..][..8];
+            // The window, columns `at − 1` to `at + 9`, inside the field's clamps too.
+            match rows {
+                Some(rows) if at >= 1 && at + 9 <= nx && _mm256_movemask_ps(near) == 0xff => {
+                    // A foot before its face lies in the cell before: its corner, and
+                    // `locate`'s fraction (the foot less its corner's coordinate).
+                    let left = _mm256_cmp_ps::<_CMP_LT_OQ>(x, home_x);
+                    let down = _mm256_cmp_ps::<_CMP_LT_OQ>(y, home_y);
+                    let fx = _mm256_sub_ps(x, _mm256_blendv_ps(home_x, before_x, left));
+                    let fy = _mm256_sub_ps(y, _mm256_blendv_ps(home_y, before_y, down));
+                    // Each row's lower and upper corner column, lane by lane.
+                    let corners = |row: &[f32]| {
+                        let w = &row[at - 1..][..10];
+                        // SAFETY: each load reads eight of `w`'s ten, from its first,
+                        // second or third.
+                        let (before, here, after) = unsafe {
+                            (
+                                _mm256_loadu_ps(w.as_ptr()),
+                                _mm256_loadu_ps(w[1..].as_ptr()),
+                                _mm256_loadu_ps(w[2..].as_ptr()),
+                            )
+                        };
+                        (
+                            _mm256_blendv_ps(here, before, left),
+                            _mm256_blendv_ps(after, here, left),
+                        )
+                    };
+                    let (lo, mid, hi) = (corners(rows[0]), corners(rows[1]), corners(rows[2]));
+                    let a0 = _mm256_blendv_ps(mid.0, lo.0, down);
+                    let a1 = _mm256_blendv_ps(mid.1, lo.1, down);
+                    let b0 = _mm256_blendv_ps(hi.0, mid.0, down);
+                    let b1 = _mm256_blendv_ps(hi.1, mid.1, down);
+                    let a = _mm256_add_ps(a0, _mm256_mul_ps(fx, _mm256_sub_ps(a1, a0)));
+                    let b = _mm256_add_ps(b0, _mm256_mul_ps(fx, _mm256_sub_ps(b1, b0)));
+                    let v = _mm256_add_ps(a, _mm256_mul_ps(fy, _mm256_sub_ps(b, a)));
+                    // SAFETY: `out` holds eight values.
+                    unsafe { _mm256_storeu_ps(out.as_mut_ptr(), v) };
+                    taken += 1;
+                }
+                _ => {
+                    let (mut xs, mut ys) = ([0.0f32; 8], [0.0f32; 8]);
+                    // SAFETY: each holds eight values.
+                    unsafe {
+                        _mm256_storeu_ps(xs.as_mut_ptr(), x);
+                        _mm256_storeu_ps(ys.as_mut_ptr(), y);
+                    }
+                    let half = |v: &[f32]| [v[0], v[1], v[2], v[3]];
+                    let (x0, y0, x1, y1) = (half(&xs), half(&ys), half(&xs[4..]), half(&ys[4..]));
+                    out[..4].copy_from_slice(&linear_sample4(field, nx, ny, x0, y0));
+                    out[4..].copy_from_slice(&linear_sample4(field, nx, ny, x1, y1));
+                }
+            }
+            if at + 8 == faces.end {
+                return taken;
+            }
+            i += 8;
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+        use crate::sim::fluid::sampling::{cell, linear_sample};
+
+        /// Every face of a row, u faces and v faces, lands where `advection::sweep` traces
+        /// it one at a time and is sampled as the general sampler samples it alone, to the
+        /// bit; and the window takes exactly the eights whose feet all lie within a cell
+        /// of their faces away from the field's edges. Velocities put feet on the cells'
+        /// edges, just inside and just past the reach, at −0, NaN and ±∞, in rows and
+        /// runs of faces at and near every edge of a field too small for the window there.
+        #[test]
+        fn a_row_sampled_eight_at_a_time_is_sampled_one_at_a_time() {
+            if !available() {
+                return;
+            }
+            let n = 22;
+            let mut state = 2024u32;
+            let mut next = || {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                (state >> 8) as f32 / (1 << 24) as f32
+            };
+            let below_one = 1.0 - f32::EPSILON / 2.0;
+            let odd = [
+                -1.0, -below_one, -0.5, -0.0, 0.0, 0.25, below_one, 1.0, -1.01,
+            ];
+            let (mut taken, mut declined) = (0, 0);
+            for round in 0..1200 {
+                let u_faces = round % 2 == 0;
+                // The field's columns and rows, and the carried rows' lengths.
+                let (nx, ny) = if u_faces { (n + 1, n) } else { (n, n + 1) };
+                let (own_len, other_len) = if u_faces { (n + 1, n) } else { (n, n + 1) };
+                let field: Vec<f32> = (0..nx * ny)
+                    .map(|k| (((k + round) * 7919) % 101) as f32 / 13.0 - 3.5)
+                    .collect();
+                // Mostly velocities that keep feet within reach, sometimes an edge case.
+                let mut speed = || {
+                    let r = next();
+                    if r < 0.03 {
+                        odd[(next() * odd.len() as f32) as usize % odd.len()]
+                    } else {
+                        (r - 0.03) / 0.97 * 2.0 - 1.0
+                    }
+                };
+                let mut own: Vec<f32> = (0..own_len).map(|_| speed()).collect();
+                let below: Vec<f32> = (0..other_len).map(|_| speed()).collect();
+                let above: Vec<f32> = (0..other_len).map(|_| speed()).collect();
+                let j = (round / 2) % ny;
+                let first = usize::from(u_faces) + (round / 7) % 5;
+                let end = n - (round / 11) % 5;
+                if round % 13 == 0 {
+                    own[first + round % 8] = [f32::NAN, f32::INFINITY, -f32::INFINITY][round % 3];
+                }
+                let s = 1.0;
+                let foot = |f: usize| {
+                    let (a, b) = (&below, &above);
+                    if u_faces {
+                        let across = s * 0.25 * (a[f - 1] + a[f] + b[f - 1] + b[f]);
+                        (cell(f) - s * own[f], cell(j) - across)
+                    } else {
+                        let across = s * 0.25 * (a[f] + a[f + 1] + b[f] + b[f + 1]);
+                        (cell(f) - across, cell(j) - s * own[f])
+                    }
+                };
+                let carried = if u_faces {
+                    Carried::U {
+                        u: &own,
+                        v: [&below, &above],
+                    }
+                } else {
+                    Carried::V {
+                        v: &own,
+                        u: [&below, &above],
+                    }
+                };
+                let mut out = vec![f32::NAN; nx];
+                // SAFETY: `available()` said this processor has AVX.
+                let took =
+                    unsafe { linear_row(&field, [nx, ny], j, first..end, carried, s, &mut out) };
+                for (f, sampled) in out.iter().enumerate().take(end).skip(first) {
+                    let (x, y) = foot(f);
+                    let one = linear_sample(&field, nx, ny, x, y);
+                    assert_eq!(sampled.to_bits(), one.to_bits(), "face {f} of row {j}");
+                }
+                // The eights it walks, and which of them the window can take.
+                let near = |t: f32, home: usize| t >= home as f32 - 1.0 && t < home as f32 + 1.0;
+                let mut expected = 0;
+                let mut i = first;
+                loop {
+                    let at = i.min(end - 8);
+                    let inside = at >= 1 && at + 9 <= nx && j >= 1 && j + 2 <= ny;
+                    let all_near = (at..at + 8).all(|f| {
+                        let (x, y) = foot(f);
+                        near(x, f) && near(y, j)
+                    });
+                    if inside && all_near {
+                        expected += 1;
+                    } else {
+                        declined += 1;
+                    }
+                    if at + 8 == end {
+                        break;
+                    }
+                    i += 8;
+                }
+                assert_eq!(took, expected, "row {j}, faces {first}..{end}");
+                taken += took;
+            }
+            assert!(
+                taken > 300 && declined > 300,
+                "{taken} taken, {declined} declined"
+            );
+        }
+    }
+}
