@@ -10,9 +10,11 @@
 //!
 //! `fingerprint` runs every shipped species and the paper's model in both slice geometries
 //! for `--to` cycles and prints a hash of every cycle's distance, bit for bit, and the
-//! cost: a refactor meant to leave the physics alone must leave the hashes alone.
+//! cost: a refactor meant to leave the physics alone must leave the hashes alone. With
+//! `--species` (the paper's model is `paper`) and `--geometry planar|axisymmetric` it
+//! runs only those, as a profiler wants.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--set field=value ...]`
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...]`
 
 #[path = "common/species.rs"]
 mod common;
@@ -456,7 +458,23 @@ fn main() {
         }
     }
     if matches!(which, "fingerprint") {
-        fingerprint(&species, &paper, flag("--to", 10));
+        let named = |flag: &str| {
+            args.iter()
+                .position(|a| a == flag)
+                .and_then(|i| args.get(i + 1))
+                .map(|v| v.to_ascii_lowercase())
+        };
+        let mut all = species.clone();
+        if only.is_none_or(|o| o.eq_ignore_ascii_case("paper")) {
+            all.push(paper.clone());
+        }
+        let geometries: Vec<SliceGeometry> = [SliceGeometry::Planar, SliceGeometry::Axisymmetric]
+            .into_iter()
+            .filter(|g| {
+                named("--geometry").is_none_or(|n| format!("{g:?}").to_ascii_lowercase() == n)
+            })
+            .collect();
+        fingerprint(&all, &geometries, flag("--to", 10));
     }
     if matches!(which, "timestep") {
         timestep(&species, from, to);
@@ -474,12 +492,12 @@ fn main() {
 
 /// A hash of each cycle's distance (every bit) in both geometries, and the cost, one
 /// species at a time (so the costs are comparable on a busy machine).
-fn fingerprint(species: &[Species], paper: &Species, cycles: u32) {
+fn fingerprint(species: &[Species], geometries: &[SliceGeometry], cycles: u32) {
     use std::hash::{Hash, Hasher};
     println!("| species | geometry | fingerprint | ms per simulated second |");
     println!("|---|---|---|---|");
-    for s in species.iter().chain([paper]) {
-        for geometry in [SliceGeometry::Planar, SliceGeometry::Axisymmetric] {
+    for s in species {
+        for &geometry in geometries {
             let s = Species {
                 slice_geometry: geometry,
                 ..s.clone()
