@@ -174,8 +174,8 @@ fn sweep<const MODE: u8>(
         Some([bu, bv]) => [Some(bu), Some(bv)],
         None => [None, None],
     };
-    // Plain bilinear takes eight feet at a time where they lie near their faces
-    // (`window`): the same bits as below.
+    // Plain bilinear and bicubic take eight feet at a time where they lie near their
+    // faces (`window`): the same bits as below.
     #[cfg(target_arch = "x86_64")]
     let avx = window::avx::available();
     // u faces, (n + 1) × n: each one's own u, and v averaged from the four faces around it.
@@ -198,14 +198,14 @@ fn sweep<const MODE: u8>(
         let faces = 1..traced.min(n);
         let out = &mut out_u[row..][..n + 1];
         #[cfg(target_arch = "x86_64")]
-        if MODE == LINEAR && avx {
+        if MODE != BOUNDED && avx {
             let carried = Carried::U {
                 u: u_row,
                 v: [v0, v1],
             };
             let dims = [n + 1, n];
             // SAFETY: this processor has AVX (asked above).
-            if unsafe { trace_windowed(src[0], dims, j, &faces, carried, s, foot, out) } {
+            if unsafe { trace_windowed::<MODE>(src[0], dims, j, &faces, carried, s, foot, out) } {
                 continue;
             }
         }
@@ -235,14 +235,14 @@ fn sweep<const MODE: u8>(
         };
         let out = &mut out_v[row..][..n];
         #[cfg(target_arch = "x86_64")]
-        if MODE == LINEAR && avx {
+        if MODE != BOUNDED && avx {
             let carried = Carried::V {
                 v: v_row,
                 u: [u0, u1],
             };
-            let dims = [n, n + 1];
+            let (dims, faces) = ([n, n + 1], 0..traced);
             // SAFETY: this processor has AVX (asked above).
-            if unsafe { trace_windowed(src[1], dims, j, &(0..traced), carried, s, foot, out) } {
+            if unsafe { trace_windowed::<MODE>(src[1], dims, j, &faces, carried, s, foot, out) } {
                 continue;
             }
         }
@@ -251,16 +251,16 @@ fn sweep<const MODE: u8>(
     }
 }
 
-/// Plain bilinear with AVX: of the faces `faces` of row `j`, those at least a column
-/// inside the row go to the window eight at a time (`window::avx::linear_row`), the one
-/// or two at its ends one at a time (`foot`); `false`, and nothing done, where fewer than
-/// eight are inside.
+/// Plain bilinear or bicubic with AVX: of the faces `faces` of row `j`, those far enough
+/// inside the row for the window go to it eight at a time (`window::avx::trace_row`),
+/// the few at its ends one at a time (`foot`); `false`, and nothing done, where fewer
+/// than eight are inside.
 ///
 /// # Safety
 /// The processor must have AVX (`window::avx::available`).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn trace_windowed(
+unsafe fn trace_windowed<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
     j: usize,
@@ -270,16 +270,26 @@ unsafe fn trace_windowed(
     foot: impl Fn(usize) -> (f32, f32),
     out: &mut [f32],
 ) -> bool {
-    let inside = faces.start.max(1)..faces.end.min(nx - 1);
+    // Bicubic reads a column further either side.
+    let reach = if MODE == CUBIC { 2 } else { 1 };
+    let inside = faces.start.max(reach)..faces.end.min(nx.saturating_sub(reach));
     if inside.len() < 8 {
         return false;
     }
     for i in (faces.start..inside.start).chain(inside.end..faces.end) {
         let (x, y) = foot(i);
-        out[i] = linear_sample(field, nx, ny, x, y);
+        out[i] = match MODE {
+            CUBIC => cubic_sample(field, nx, ny, x, y),
+            _ => linear_sample(field, nx, ny, x, y),
+        };
     }
     // SAFETY: the caller vouches for AVX.
-    unsafe { window::avx::linear_row(field, [nx, ny], j, inside, carried, s, out) };
+    unsafe {
+        match MODE {
+            CUBIC => window::avx::trace_row::<true>(field, [nx, ny], j, inside, carried, s, out),
+            _ => window::avx::trace_row::<false>(field, [nx, ny], j, inside, carried, s, out),
+        }
+    };
     true
 }
 

@@ -354,7 +354,7 @@ fn limited(value: f32, rows: [[f32; 4]; 4]) -> f32 {
 
 /// `value` limited to the range of `nearest`, the four values around the point.
 #[inline(always)]
-fn within(value: f32, [a0, a1, b0, b1]: [f32; 4]) -> f32 {
+pub(super) fn within(value: f32, [a0, a1, b0, b1]: [f32; 4]) -> f32 {
     let lo = a0.min(a1).min(b0).min(b1);
     let hi = a0.max(a1).max(b0).max(b1);
     // max-then-min, not clamp: NaN must reach the health check, not panic.
