@@ -13,6 +13,10 @@ pub(crate) struct BandedSpd {
     band: usize,
     /// Lower band, row-major: `lower[row * (band + 1) + (row - col)]`.
     lower: Vec<f64>,
+    /// The reciprocals of the factor's diagonal: each row's entries and the substitutions
+    /// multiply by them, where a division in every entry's dependency chain was most of
+    /// the factorisation's time.
+    inverse: Vec<f64>,
 }
 
 impl BandedSpd {
@@ -22,6 +26,7 @@ impl BandedSpd {
             n,
             band,
             lower: vec![0.0; n * (band + 1)],
+            inverse: vec![0.0; n],
         }
     }
 
@@ -63,13 +68,14 @@ impl BandedSpd {
                         return false;
                     }
                     row_i[0] = sum.sqrt();
+                    self.inverse[i] = 1.0 / row_i[0];
                 } else {
                     let row_j = &done[j * w..][..w];
                     let ik = row_i[i - j + 1..=i - start].iter().rev();
                     for (l_ik, l_jk) in ik.zip(row_j[1..=j - start].iter().rev()) {
                         sum -= l_ik * l_jk;
                     }
-                    row_i[i - j] = sum / row_j[0];
+                    row_i[i - j] = sum * self.inverse[j];
                 }
             }
         }
@@ -78,14 +84,14 @@ impl BandedSpd {
             let first = i.saturating_sub(b);
             let row = &self.lower[i * w..i * w + w];
             let sum = (first..i).fold(rhs[i], |sum, k| sum - row[i - k] * rhs[k]);
-            rhs[i] = sum / row[0];
+            rhs[i] = sum * self.inverse[i];
         }
         // Backward: Lᵀ x = y.
         for i in (0..n).rev() {
             let last = (i + b + 1).min(n);
             let sum =
                 (i + 1..last).fold(rhs[i], |sum, k| sum - self.lower[k * w + (k - i)] * rhs[k]);
-            rhs[i] = sum / self.lower[i * w];
+            rhs[i] = sum * self.inverse[i];
         }
         true
     }
