@@ -59,7 +59,6 @@ pub(super) mod avx {
         // The window's rows (`j − reach` to `j + reach`) if the samplers' clamps to the
         // field do not reach them (`locate` keeps a cell below the last but one).
         let inside_rows = j >= reach && j + reach < ny;
-        let row = |k: usize| &field[(j + k - reach) * nx..][..nx];
         // SAFETY: each load reads eight values of a slice of eight.
         let load = |v: &[f32]| unsafe { _mm256_loadu_ps(v[..8].as_ptr()) };
         let (step, quarter) = (_mm256_set1_ps(s), _mm256_set1_ps(s * 0.25));
@@ -111,18 +110,27 @@ pub(super) mod avx {
                 let down = _mm256_cmp_ps::<_CMP_LT_OQ>(y, home_y);
                 let fx = _mm256_sub_ps(x, _mm256_blendv_ps(home_x, before_x, left));
                 let fy = _mm256_sub_ps(y, _mm256_blendv_ps(home_y, before_y, down));
-                // Row `k` of the window, its `c`th column from the cell's `reach − 1`
-                // before: two shifted loads, one chosen per lane.
-                let shifted = |k: usize, o: usize| load(&row(k)[at - reach + o..]);
-                let pick =
-                    |k: usize, c: usize| _mm256_blendv_ps(shifted(k, c + 1), shifted(k, c), left);
+                // The window's rows, `j − reach` on: in each, the columns from the cell's
+                // `reach − 1` before on, two shifted loads a column, one chosen per lane.
+                // (Loops, not closures: those were left as calls.)
+                let mut columns = [[_mm256_setzero_ps(); 4]; 5];
+                for (k, row) in columns.iter_mut().enumerate().take(2 * reach + 1) {
+                    let w = &field[(j + k - reach) * nx + at - reach..][..8 + 2 * reach];
+                    let mut shifted = [_mm256_setzero_ps(); 5];
+                    for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
+                        *v = load(&w[o..]);
+                    }
+                    for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
+                        *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
+                    }
+                }
                 let v = if CUBIC {
                     // The cell's row and one before, two after: rows j − 2 to j + 2 of
                     // the window, the lower four or the upper four.
                     let mut values = [[_mm256_setzero_ps(); 4]; 4];
                     for (b, row) in values.iter_mut().enumerate() {
                         for (c, value) in row.iter_mut().enumerate() {
-                            *value = _mm256_blendv_ps(pick(b + 1, c), pick(b, c), down);
+                            *value = _mm256_blendv_ps(columns[b + 1][c], columns[b][c], down);
                         }
                     }
                     let (wx, wy) = (catmull_rom(fx), catmull_rom(fy));
@@ -145,11 +153,7 @@ pub(super) mod avx {
                 } else {
                     // The cell's row and the one after: rows j − 1 to j + 1 of the window,
                     // the lower two or the upper two.
-                    let (lo, mid, hi) = (
-                        [pick(0, 0), pick(0, 1)],
-                        [pick(1, 0), pick(1, 1)],
-                        [pick(2, 0), pick(2, 1)],
-                    );
+                    let [lo, mid, hi, ..] = columns;
                     let a0 = _mm256_blendv_ps(mid[0], lo[0], down);
                     let a1 = _mm256_blendv_ps(mid[1], lo[1], down);
                     let b0 = _mm256_blendv_ps(hi[0], mid[0], down);
