@@ -59,14 +59,22 @@ pub(super) mod avx {
         // The window's rows (`j − reach` to `j + reach`) if the samplers' clamps to the
         // field do not reach them (`locate` keeps a cell below the last but one).
         let inside_rows = j >= reach && j + reach < ny;
-        // SAFETY: each load reads eight values of a slice of eight.
-        let load = |v: &[f32]| unsafe { _mm256_loadu_ps(v[..8].as_ptr()) };
-        let (step, quarter) = (_mm256_set1_ps(s), _mm256_set1_ps(s * 0.25));
+        // Macros, not closures: the compiler left closures here as calls.
+        macro_rules! load {
+            // SAFETY: each load reads eight values of a slice of eight.
+            ($v:expr) => {
+                unsafe { _mm256_loadu_ps($v[..8].as_ptr()) }
+            };
+        }
         // ((a + a′) + b) + b′ of the four faces around each, from column `k` on.
-        let around = |[a, b]: [&[f32]; 2], k: usize| {
-            let sum = _mm256_add_ps(load(&a[k..]), load(&a[k + 1..]));
-            _mm256_add_ps(_mm256_add_ps(sum, load(&b[k..])), load(&b[k + 1..]))
-        };
+        macro_rules! around {
+            ($rows:expr, $k:expr) => {{
+                let ([a, b], k) = ($rows, $k);
+                let sum = _mm256_add_ps(load!(a[k..]), load!(a[k + 1..]));
+                _mm256_add_ps(_mm256_add_ps(sum, load!(b[k..])), load!(b[k + 1..]))
+            }};
+        }
+        let (step, quarter) = (_mm256_set1_ps(s), _mm256_set1_ps(s * 0.25));
         let one = _mm256_set1_ps(1.0);
         // Whole numbers below 2²⁴: exact, and so are they plus or minus one.
         let home_y = _mm256_set1_ps(j as u32 as f32);
@@ -80,12 +88,12 @@ pub(super) mod avx {
             // Each foot: its face less the step times the velocity there.
             let (x, y) = match carried {
                 Carried::U { u, v } => (
-                    _mm256_sub_ps(home_x, _mm256_mul_ps(step, load(&u[at..]))),
-                    _mm256_sub_ps(home_y, _mm256_mul_ps(quarter, around(v, at - 1))),
+                    _mm256_sub_ps(home_x, _mm256_mul_ps(step, load!(u[at..]))),
+                    _mm256_sub_ps(home_y, _mm256_mul_ps(quarter, around!(v, at - 1))),
                 ),
                 Carried::V { v, u } => (
-                    _mm256_sub_ps(home_x, _mm256_mul_ps(quarter, around(u, at))),
-                    _mm256_sub_ps(home_y, _mm256_mul_ps(step, load(&v[at..]))),
+                    _mm256_sub_ps(home_x, _mm256_mul_ps(quarter, around!(u, at))),
+                    _mm256_sub_ps(home_y, _mm256_mul_ps(step, load!(v[at..]))),
                 ),
             };
             let (before_x, after_x) = (_mm256_sub_ps(home_x, one), _mm256_add_ps(home_x, one));
@@ -118,7 +126,7 @@ pub(super) mod avx {
                     let w = &field[(j + k - reach) * nx + at - reach..][..8 + 2 * reach];
                     let mut shifted = [_mm256_setzero_ps(); 5];
                     for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
-                        *v = load(&w[o..]);
+                        *v = load!(w[o..]);
                     }
                     for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
                         *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
@@ -149,7 +157,7 @@ pub(super) mod avx {
                     for (l, out) in limited.iter_mut().enumerate() {
                         *out = within(value[l], [a0[l], a1[l], b0[l], b1[l]]);
                     }
-                    load(&limited)
+                    load!(limited)
                 } else {
                     // The cell's row and the one after: rows j − 1 to j + 1 of the window,
                     // the lower two or the upper two.
