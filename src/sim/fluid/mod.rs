@@ -9,7 +9,7 @@
 //! One idea per file, so that another slice geometry can share them:
 //! - `advection`: the velocity carried along itself (semi-Lagrangian,
 //!   MacCormack or limited bicubic), on the samplers of `sampling` (and of `window`,
-//!   eight bilinear feet near their faces at a time);
+//!   eight feet near their faces at a time);
 //! - `immersed`: where the bell meets the grid: points read velocities and spread forces
 //!   through one stencil;
 //! - `diffusion`: viscosity;

@@ -195,6 +195,7 @@ pub(super) mod avx {
     /// `sampling::catmull_rom` of eight fractions: each weight's operations in its order
     /// (−a + b is b − a, and (−3)·a is −(3·a), bit for bit).
     #[target_feature(enable = "avx")]
+    #[inline]
     fn catmull_rom(t: __m256) -> [__m256; 4] {
         let k = _mm256_set1_ps;
         let (t2, t3) = (_mm256_mul_ps(t, t), _mm256_mul_ps(_mm256_mul_ps(t, t), t));
@@ -219,6 +220,7 @@ pub(super) mod avx {
 
     /// The eight lanes of `v`.
     #[target_feature(enable = "avx")]
+    #[inline]
     fn lanes(v: __m256) -> [f32; 8] {
         let mut out = [0.0f32; 8];
         // SAFETY: `out` holds eight values.
