@@ -297,7 +297,8 @@ unsafe fn trace_windowed<const MODE: u8>(
 /// one row, into `out` (and the corners' range into `bounds`, for MacCormack). Bilinear
 /// and bicubic take four faces at a time (`feet`), whose arithmetic compiles to four-wide
 /// vector instructions: the same bits as one at a time (`foot`), the bicubic a fifth off
-/// *Sarsia*'s slice, the bilinear a seventh off the moon jelly's.
+/// *Sarsia*'s slice, the bilinear a seventh off the moon jelly's. With AVX, `sweep` hands
+/// bilinear and bicubic rows to `trace_windowed` first; this takes what it leaves.
 fn trace_row<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
