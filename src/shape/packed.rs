@@ -258,17 +258,23 @@ pub fn round_to_halves(offsets: &mut [Vec3]) {
     }
 }
 
+/// A guide's values, two trails' worth, rounded up to whole eights (the widest conversion).
+const HALVES_PADDED: usize = (2 * TRAIL).next_multiple_of(8);
+
 /// Appends one guide's node offsets (its root's left out) as `trail_values` values of two
 /// halves each.
 fn write_halves(nodes: &[Vec3], out: &mut Vec<f32>) {
     use half::slice::HalfFloatSliceExt;
     let len = 3 * nodes.len();
-    let mut values = [0.0f32; 2 * TRAIL];
+    let mut values = [0.0f32; HALVES_PADDED];
     for (value, d) in values.chunks_exact_mut(3).zip(nodes) {
         value.copy_from_slice(&d.to_array());
     }
-    let mut halves = [half::f16::ZERO; 2 * TRAIL];
-    halves[..len].convert_from_f32_slice(&values[..len]);
+    let mut halves = [half::f16::ZERO; HALVES_PADDED];
+    // Whole eights of the zeroed padding converted too: a remainder goes through a copy
+    // into a buffer (a `memcpy` call a guide, 1.5% of a 10,002 frame); the same bits.
+    let converted = len.next_multiple_of(8);
+    halves[..converted].convert_from_f32_slice(&values[..converted]);
     let pair =
         |h: &[half::f16]| f32::from_bits(h[0].to_bits() as u32 | (h[1].to_bits() as u32) << 16);
     out.extend(halves[..len].chunks_exact(2).map(pair));
