@@ -258,7 +258,8 @@ pub fn round_to_halves(offsets: &mut [Vec3]) {
     }
 }
 
-/// A guide's values, two trails' worth, rounded up to whole eights (the widest conversion).
+/// A guide's halves (`TRAIL` values of two), rounded up to whole eights: the widest
+/// conversion the `half` crate has.
 const HALVES_PADDED: usize = (2 * TRAIL).next_multiple_of(8);
 
 /// Appends one guide's node offsets (its root's left out) as `trail_values` values of two
