@@ -46,6 +46,37 @@ impl BandedSpd {
         self.lower[r * (self.band + 1) + (r - c)] += value;
     }
 
+    /// Adds `k·g gᵀ` for a gradient `g` over a few points of two unknowns each,
+    /// `(first unknown, [x, y])` with distinct points, each entry `k·(gₐ·g_b)` (the product
+    /// in `f32`, as the gradients are) added once.
+    pub(crate) fn add_outer(&mut self, k: f64, g: &[(usize, [f32; 2])]) {
+        let w = self.band + 1;
+        let lower = &mut self.lower[..];
+        let mut add = |r: usize, c: usize, value: f64| {
+            debug_assert!(r >= c && r - c < w, "entry outside the band");
+            lower[r * w + (r - c)] += value;
+        };
+        for (p, &(op, gp)) in g.iter().enumerate() {
+            // The point's own 2×2 block is symmetric: its lower triangle.
+            add(op, op, k * (gp[0] * gp[0]) as f64);
+            add(op + 1, op, k * (gp[1] * gp[0]) as f64);
+            add(op + 1, op + 1, k * (gp[1] * gp[1]) as f64);
+            for &(oq, gq) in &g[..p] {
+                for (a, ga) in gp.iter().enumerate() {
+                    for (b, gb) in gq.iter().enumerate() {
+                        let (r, c) = (op + a, oq + b);
+                        let value = k * (ga * gb) as f64;
+                        if r >= c {
+                            add(r, c, value)
+                        } else {
+                            add(c, r, value)
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// Factorises in place (Cholesky, `A = L·Lᵀ`) and solves `A x = rhs`, overwriting
     /// `rhs` with `x`. Returns false if the matrix was not positive definite.
     pub(crate) fn factor_and_solve(&mut self, rhs: &mut [f64]) -> bool {

@@ -15,25 +15,53 @@ use glam::Vec2;
 pub(crate) struct Coupling {
     u: Vec<Stencil>,
     v: Vec<Stencil>,
+    /// `(point, partner)` for each point read as the mirror image of its partner (an
+    /// axisymmetric slice's points past the axis, out of the solved half's reach).
+    mirrored: Vec<(usize, usize)>,
 }
 
 impl Coupling {
-    /// Finds the stencils of `points` on `fluid`'s grid.
-    pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2]) {
+    /// Finds the stencils of `points` on `fluid`'s grid. `partners[i]`, where given, is the
+    /// point `i` is the mirror image of: an axisymmetric slice solves its water on the half
+    /// before the axis, so a point past it whose stencils all lie in the other half is
+    /// read as its partner's mirror and spreads nothing (`docs/numerics.md`).
+    pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2], partners: &[Option<usize>]) {
         // In place: a stencil built and then moved was read back before its own stores
         // had landed (a store-forwarding stall per copy).
         self.u.resize(points.len(), Stencil::default());
         self.v.resize(points.len(), Stencil::default());
-        for ((p, u), v) in points.iter().zip(&mut self.u).zip(&mut self.v) {
+        self.mirrored.clear();
+        let partner = |i: usize| partners.get(i).copied().flatten();
+        for (i, ((p, u), v)) in points.iter().zip(&mut self.u).zip(&mut self.v).enumerate() {
+            if let Some(j) = partner(i)
+                && fluid.beyond_the_solved_half(*p)
+            {
+                self.mirrored.push((i, j));
+                continue;
+            }
             fluid.locate(Component::U, *p, u);
             fluid.locate(Component::V, *p, v);
         }
     }
 
+    /// How many points the last [`Self::locate`] read as their partners' mirrors.
+    #[cfg(test)]
+    pub(crate) fn mirrored(&self) -> usize {
+        self.mirrored.len()
+    }
+
     /// Fluid velocity at each located point.
     pub(crate) fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
-        for ((o, su), sv) in out.iter_mut().zip(&self.u).zip(&self.v) {
+        let mut skip = self.mirrored.iter().map(|&(i, _)| i).peekable();
+        for (i, ((o, su), sv)) in out.iter_mut().zip(&self.u).zip(&self.v).enumerate() {
+            if skip.next_if_eq(&i).is_some() {
+                continue;
+            }
             *o = Vec2::new(su.sample(&fluid.u), sv.sample(&fluid.v));
+        }
+        // The water is mirrored about the axis: `u` odd, `v` even.
+        for &(i, j) in &self.mirrored {
+            out[i] = Vec2::new(-out[j].x, out[j].y);
         }
     }
 
@@ -43,7 +71,11 @@ impl Coupling {
     pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
         let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
         let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
-        for ((f, su), sv) in forces.iter().zip(&self.u).zip(&self.v) {
+        let mut skip = self.mirrored.iter().map(|&(i, _)| i).peekable();
+        for (i, ((f, su), sv)) in forces.iter().zip(&self.u).zip(&self.v).enumerate() {
+            if skip.next_if_eq(&i).is_some() {
+                continue;
+            }
             su.spread(f.x, scale_u, force_u);
             sv.spread(f.y, scale_v, force_v);
         }

@@ -95,6 +95,20 @@ impl Stencil {
     }
 }
 
+/// How far from a point, in cells, the faces of its stencil can lie: no face further
+/// than this along either axis carries weight.
+pub(crate) fn reach(kernel: Kernel, stretch: f32) -> f32 {
+    match kernel {
+        Kernel::Bilinear => 1.0,
+        Kernel::Roma3 => 1.5 * clamped_stretch(stretch),
+    }
+}
+
+/// The stretch a stencil is built with: at most [`MAX_TAPS`] faces along an axis.
+fn clamped_stretch(stretch: f32) -> f32 {
+    stretch.clamp(1.0, (MAX_TAPS - 1) as f32 / 3.0)
+}
+
 /// Roma, Peskin & Berger's three-point kernel at `r` cells (support |r| < 3/2).
 #[cfg(any(test, not(target_arch = "x86_64")))]
 fn roma(r: f32) -> f32 {
@@ -192,8 +206,8 @@ fn taps_into(t: &mut Taps, kernel: Kernel, g: f32, count: usize, stretch: f32) {
             t.len = 2;
         }
         Kernel::Roma3 => {
-            let stretch = stretch.clamp(1.0, (MAX_TAPS - 1) as f32 / 3.0);
-            let reach = 1.5 * stretch;
+            let stretch = clamped_stretch(stretch);
+            let reach = reach(kernel, stretch);
             let (first, end) = (ceil_in_range(g - reach), floor_non_negative(g + reach));
             // The faces in reach four at a time, without a branch, so that the divisions
             // and square roots vectorise; those of positive weight kept, in order.
@@ -361,6 +375,28 @@ mod tests {
             let inner: f32 = spread.iter().zip(&field).map(|(a, b)| a * b).sum();
             let read = 2.5 * s.sample(&field);
             assert!((inner - read).abs() < 1e-5, "{g}: {inner} against {read}");
+        }
+    }
+
+    #[test]
+    fn no_face_lies_beyond_the_reach() {
+        for (kernel, stretch) in [
+            (Kernel::Bilinear, 1.0),
+            (Kernel::Roma3, 1.0),
+            (Kernel::Roma3, 1.43),
+            (Kernel::Roma3, 2.0),
+            (Kernel::Roma3, 9.0),
+        ] {
+            for k in 0..97 {
+                let g = 40.0 + k as f32 / 32.0;
+                let s = stencil(kernel, g, g, 100, 100, stretch);
+                let far = s
+                    .iter()
+                    .map(|(face, _)| (face % 100) as f32 - g)
+                    .fold(0.0f32, |m, d| m.max(d.abs()));
+                let reach = reach(kernel, stretch);
+                assert!(far <= reach, "{kernel:?}×{stretch} at {g}: {far} > {reach}");
+            }
         }
     }
 

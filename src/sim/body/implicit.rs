@@ -8,29 +8,73 @@ use std::ops::Range;
 
 /// Exact solve of `(m/dt² I + Σ k g gᵀ) δ = F` with a banded Cholesky factorisation, over
 /// a subset of the body's points (the others are held where they are).
+///
+/// A body of revolution (an r–z slice) is solved on its half: each point past the axis
+/// enters as its partner's mirror image (`δ` the same with its radial part reversed), so
+/// the system is the full one restricted to mirror-symmetric displacements (Galerkin:
+/// `Eᵀ A E δ = Eᵀ F`, `E` the mirror's embedding), half the unknowns in a band the chain's
+/// neighbours set instead of the alternating order's.
 #[derive(Clone)]
 pub(super) struct Solver {
-    /// Position of each point in the band ordering; `None` for points held fixed.
-    order: Vec<Option<usize>>,
+    /// Each point's place in the band ordering; `None` for points held fixed.
+    order: Vec<Option<Place>>,
     /// The solved points, in band order.
     sequence: Vec<usize>,
+    /// The points that enter as their partner's mirror image, ascending.
+    mirrored: Vec<usize>,
     matrix: BandedSpd,
     /// The right-hand side, then the solution.
     pub(crate) rhs: Vec<f64>,
     forces: Vec<Vec2>,
 }
 
+/// Where a point's displacement is in the band ordering.
+#[derive(Clone, Copy)]
+struct Place {
+    at: usize,
+    /// The point is its partner's mirror image: its radial (x) part reversed.
+    mirrored: bool,
+}
+
+impl Place {
+    fn read(self, v: Vec2) -> Vec2 {
+        if self.mirrored {
+            Vec2::new(-v.x, v.y)
+        } else {
+            v
+        }
+    }
+}
+
 impl Solver {
     /// A solver for the points of `sequence`, numbered in that order (each coupling should
-    /// join points a few places apart in it, which keeps the band narrow).
-    pub(crate) fn new(body_len: usize, sequence: Vec<usize>) -> Self {
+    /// join points a few places apart in it, which keeps the band narrow), and for each
+    /// point `partners` names (`partners[j] = Some(i)`, `i` in `sequence`), as `i`'s
+    /// mirror image.
+    pub(crate) fn new(body_len: usize, sequence: Vec<usize>, partners: &[Option<usize>]) -> Self {
         let mut order = vec![None; body_len];
-        for (k, &i) in sequence.iter().enumerate() {
-            order[i] = Some(k);
+        for (at, &i) in sequence.iter().enumerate() {
+            order[i] = Some(Place {
+                at,
+                mirrored: false,
+            });
+        }
+        let mut mirrored = Vec::new();
+        for (j, partner) in partners.iter().enumerate() {
+            if let Some(Some(place)) = partner.map(|i| order[i])
+                && order[j].is_none()
+            {
+                order[j] = Some(Place {
+                    mirrored: true,
+                    ..place
+                });
+                mirrored.push(j);
+            }
         }
         Self {
             order,
             sequence,
+            mirrored,
             matrix: BandedSpd::new(0, 0),
             rhs: Vec::new(),
             forces: vec![Vec2::ZERO; body_len],
@@ -38,9 +82,13 @@ impl Solver {
     }
 
     /// The bell numbered from the apex outwards, alternating sides: every spring, hinge
-    /// and muscle then couples points a few places apart.
-    pub(crate) fn bell_order(bell: &Range<usize>) -> Vec<usize> {
+    /// and muscle then couples points a few places apart. Of a body of revolution
+    /// (`half`), its half from the left margin to the apex, in the chain's order.
+    pub(crate) fn bell_order(bell: &Range<usize>, half: bool) -> Vec<usize> {
         let m = bell.len() / 2;
+        if half {
+            return (bell.start..=bell.start + m).collect();
+        }
         let mut out = vec![bell.start + m];
         for d in 1..=m {
             out.push(bell.start + m - d);
@@ -49,8 +97,12 @@ impl Solver {
         out
     }
 
-    /// The tentacles numbered from the margins outwards, alternating sides.
-    pub(crate) fn tentacle_order(tentacles: &[Range<usize>; 2]) -> Vec<usize> {
+    /// The tentacles numbered from the margins outwards, alternating sides; of a body of
+    /// revolution (`half`), the left one's alone.
+    pub(crate) fn tentacle_order(tentacles: &[Range<usize>; 2], half: bool) -> Vec<usize> {
+        if half {
+            return tentacles[0].clone().collect();
+        }
         let longest = tentacles[0].len().max(tentacles[1].len());
         let mut out = Vec::new();
         for k in 0..longest {
@@ -68,7 +120,9 @@ impl Solver {
         let band = cons
             .iter()
             .map(|c| {
-                let pos = c.idx[..c.count].iter().filter_map(|&i| self.order[i]);
+                let pos = c.idx[..c.count]
+                    .iter()
+                    .filter_map(|&i| self.order[i].map(|p| p.at));
                 let (lo, hi) = pos.fold((usize::MAX, 0), |(lo, hi), o| (lo.min(o), hi.max(o)));
                 hi.saturating_sub(lo)
             })
@@ -100,36 +154,50 @@ impl Solver {
             self.rhs[2 * o] = f.x as f64;
             self.rhs[2 * o + 1] = f.y as f64;
         }
+        for &j in &self.mirrored {
+            let place = self.order[j].expect("a mirrored point has a place");
+            let f = place.read(self.forces[j]);
+            self.rhs[2 * place.at] += f.x as f64;
+            self.rhs[2 * place.at + 1] += f.y as f64;
+        }
         self.matrix.clear_to_diagonal(0.0);
         for (o, &i) in self.sequence.iter().enumerate() {
             let d = diag(i) as f64;
             self.matrix.add(2 * o, 2 * o, d);
             self.matrix.add(2 * o + 1, 2 * o + 1, d);
         }
+        for &j in &self.mirrored {
+            let (o, d) = (self.order[j].map_or(0, |p| p.at), diag(j) as f64);
+            self.matrix.add(2 * o, 2 * o, d);
+            self.matrix.add(2 * o + 1, 2 * o + 1, d);
+        }
         for c in cons {
             let k = c.stiffness as f64 * (1.0 + damping as f64);
+            // The constraint's gradient over the solved displacements: a point and its
+            // mirror image are one unknown, so their parts add.
+            let mut merged = [(0usize, [0.0f32; 2]); 3];
+            let mut len = 0;
             for p in 0..c.count {
-                for q in 0..=p {
-                    let (gp, gq) = (c.grad[p].to_array(), c.grad[q].to_array());
-                    let (Some(op), Some(oq)) = (self.order[c.idx[p]], self.order[c.idx[q]]) else {
-                        continue;
-                    };
-                    for (a, ga) in gp.iter().enumerate() {
-                        for (b, gb) in gq.iter().enumerate() {
-                            // A point's own 2×2 block is symmetric: give each entry once.
-                            if p == q && b > a {
-                                continue;
-                            }
-                            self.matrix
-                                .add(2 * op + a, 2 * oq + b, k * (ga * gb) as f64);
-                        }
+                let Some(place) = self.order[c.idx[p]] else {
+                    continue;
+                };
+                let g = place.read(c.grad[p]).to_array();
+                match merged[..len].iter_mut().find(|(at, _)| *at == 2 * place.at) {
+                    Some((_, sum)) => {
+                        sum[0] += g[0];
+                        sum[1] += g[1];
+                    }
+                    None => {
+                        merged[len] = (2 * place.at, g);
+                        len += 1;
                     }
                 }
             }
+            self.matrix.add_outer(k, &merged[..len]);
         }
         if !self.matrix.factor_and_solve(&mut self.rhs) {
             // Only non-finite input gets here; the step's health check then recovers.
-            for &i in &self.sequence {
+            for &i in self.sequence.iter().chain(&self.mirrored) {
                 out[i] = Vec2::splat(f32::NAN);
             }
             return;
@@ -138,6 +206,11 @@ impl Solver {
         for (o, &i) in self.sequence.iter().enumerate() {
             let (x, y) = (self.rhs[2 * o], self.rhs[2 * o + 1]);
             out[i] = diag(i) * Vec2::new(x as f32, y as f32);
+        }
+        for &j in &self.mirrored {
+            let place = self.order[j].expect("a mirrored point has a place");
+            let (x, y) = (self.rhs[2 * place.at], self.rhs[2 * place.at + 1]);
+            out[j] = diag(j) * place.read(Vec2::new(x as f32, y as f32));
         }
     }
 }

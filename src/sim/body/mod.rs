@@ -62,6 +62,9 @@ pub struct Body {
     pub(crate) tentacle_drag: Vec<f32>,
     /// Per unit of what depth every element is (a metre of a plane, a radian of rings).
     pub(crate) depth: Depth,
+    /// Of a body of revolution (an r–z slice), each point past the axis's partner before
+    /// it, whose mirror image it is (`None` before the axis and on it; empty in the plane).
+    mirror_partners: Vec<Option<usize>>,
     drag_model: TentacleDrag,
     bell_solver: Solver,
     tentacle_solver: Solver,
@@ -69,6 +72,24 @@ pub struct Body {
     /// The elements at the predicted positions, the bell's and the tentacles', kept
     /// between steps so that a step allocates nothing.
     split: Split,
+}
+
+/// The partner of each point past the axis (the right half of the subumbrella and the
+/// right tentacle), as [`Body::symmetrise`] pairs them.
+fn mirror_partners(
+    bell_len: usize,
+    tentacles: &[Range<usize>; 2],
+    count: usize,
+) -> Vec<Option<usize>> {
+    let mut partners = vec![None; count];
+    for i in 0..bell_len / 2 {
+        partners[bell_len - 1 - i] = Some(i);
+    }
+    let [left, right] = tentacles.clone();
+    for (i, j) in left.zip(right) {
+        partners[j] = Some(i);
+    }
+    partners
 }
 
 /// A step's elements, sorted by what they join: the bell alone, or a tentacle.
@@ -117,8 +138,16 @@ impl Body {
             depth,
         );
 
-        let bell_solver = Solver::new(points.len(), Solver::bell_order(&(0..bell_len)));
-        let tentacle_solver = Solver::new(points.len(), Solver::tentacle_order(&tentacles));
+        let half = depth.rings();
+        let mirror_partners = if half {
+            mirror_partners(bell_len, &tentacles, points.len())
+        } else {
+            Vec::new()
+        };
+        let bell_order = Solver::bell_order(&(0..bell_len), half);
+        let bell_solver = Solver::new(points.len(), bell_order, &mirror_partners);
+        let tentacle_order = Solver::tentacle_order(&tentacles, half);
+        let tentacle_solver = Solver::new(points.len(), tentacle_order, &mirror_partners);
         let scratch = vec![Vec2::ZERO; points.len()];
         let drag_model = TentacleDrag::new(species, seg_len, depth);
         Self {
@@ -132,6 +161,7 @@ impl Body {
             damping_time: species.mesoglea_damping_time(),
             tentacle_drag: vec![drag_model.at(0.0); scratch.len()],
             depth,
+            mirror_partners,
             drag_model,
             scratch,
             bell_solver,
@@ -145,6 +175,12 @@ impl Body {
         self.points.len() == other.points.len()
             && self.bell == other.bell
             && self.tentacles == other.tentacles
+    }
+
+    /// Each point's partner across the axis, whose mirror image it is: the points past
+    /// the axis of a body of revolution (empty for a planar body).
+    pub(crate) fn mirror_partners(&self) -> &[Option<usize>] {
+        &self.mirror_partners
     }
 
     /// The subumbrella's points, left margin to right margin.

@@ -3,7 +3,7 @@
 //! which makes interpolation and spreading adjoint and spreading exactly force-conserving.
 
 use super::{Component, Fluid};
-use crate::sim::kernel::Stencil;
+use crate::sim::kernel::{Stencil, reach};
 use glam::Vec2;
 
 impl Fluid {
@@ -64,6 +64,19 @@ impl Fluid {
         let mut s = Stencil::default();
         self.locate(c, p, &mut s);
         s
+    }
+
+    /// Whether a point of an axisymmetric slice lies so far past the axis that no face
+    /// of its stencils is in the solved half: what it spreads there is dropped (the
+    /// projection mirrors the solved half over it), and what it reads is the mirror image
+    /// of what its partner before the axis reads. Always false in the plane.
+    pub(crate) fn beyond_the_solved_half(&self, p: Vec2) -> bool {
+        let Some(solved) = self.rings().map(|r| r.solved) else {
+            return false;
+        };
+        // The first `u` face of its stencil past the last one applied (`solved`), with a
+        // face to spare; `v`'s stencil starts half a cell further out.
+        p.x / self.h - reach(self.kernel, self.kernel_stretch) > solved as f32 + 1.0
     }
 
     /// [`Self::stencil`], written over `out`.

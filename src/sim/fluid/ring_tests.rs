@@ -70,7 +70,7 @@ fn ring_forces_spread_exactly_even_across_the_axis() {
         .iter()
         .flat_map(|g| [*g, Vec2::new(-g.x, g.y)])
         .collect();
-    coupling.locate(&f, &both);
+    coupling.locate(&f, &both, &[]);
     coupling.spread(&mut f, &mirrored_forces);
     let expected: f32 = forces.iter().map(|g| g.y).sum();
     let total = axial_force(&f);
@@ -78,6 +78,58 @@ fn ring_forces_spread_exactly_even_across_the_axis() {
         (total - expected).abs() < 1e-5,
         "axial force per radian {total} vs {expected}"
     );
+}
+
+#[test]
+fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
+    let mut f = swirl(41);
+    f.project();
+    let axis = f.axis();
+    // Pairs far out (read as mirrors) and within a kernel of the axis (located).
+    let before: Vec<Vec2> = [12.0, 6.0, 2.5, 1.1, 0.1]
+        .iter()
+        .enumerate()
+        .map(|(k, cells)| Vec2::new(axis - cells * f.h, (11.3 + 1.7 * k as f32) * f.h))
+        .collect();
+    let mut points = before.clone();
+    points.extend(before.iter().map(|p| mirrored(&f, *p)));
+    let partners: Vec<Option<usize>> = (0..points.len())
+        .map(|i| (i >= before.len()).then(|| i - before.len()))
+        .collect();
+    let forces: Vec<Vec2> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let g = Vec2::new(0.3 - 0.1 * (i % 5) as f32, 0.7 + 0.05 * (i % 5) as f32);
+            if p.x > axis { Vec2::new(-g.x, g.y) } else { g }
+        })
+        .collect();
+    let (mut all, mut half) = (Coupling::default(), Coupling::default());
+    all.locate(&f, &points, &[]);
+    half.locate(&f, &points, &partners);
+    assert_eq!(half.mirrored(), 2, "the two pairs far from the axis");
+    let (mut read_all, mut read_half) = (vec![Vec2::ZERO; 10], vec![Vec2::ZERO; 10]);
+    all.interpolate(&f, &mut read_all);
+    half.interpolate(&f, &mut read_half);
+    let scale = f.speed_max();
+    for (a, b) in read_all.iter().zip(&read_half) {
+        assert!((*a - *b).abs().max_element() <= 1e-5 * scale, "{a} vs {b}");
+    }
+    // What reaches the solved half is the same, bit for bit; the rest is dropped anyway.
+    let mut g = f.clone();
+    all.spread(&mut f, &forces);
+    half.spread(&mut g, &forces);
+    let (n, solved) = (f.n, f.rings().unwrap().solved);
+    for (field, other, row, columns) in [
+        (&f.force_u, &g.force_u, n + 1, solved + 1),
+        (&f.force_v, &g.force_v, n, solved),
+    ] {
+        for (a, b) in field.chunks_exact(row).zip(other.chunks_exact(row)) {
+            for (x, y) in a[..columns].iter().zip(&b[..columns]) {
+                assert_eq!(x.to_bits(), y.to_bits());
+            }
+        }
+    }
 }
 
 #[test]
@@ -90,7 +142,7 @@ fn interpolation_and_spreading_are_adjoint_in_the_r_weighted_product() {
     let points = [p, mirrored(&f, p)];
     let forces = [force, Vec2::new(-force.x, force.y)];
     let mut coupling = Coupling::default();
-    coupling.locate(&f, &points);
+    coupling.locate(&f, &points, &[]);
     let mut read = [Vec2::ZERO; 2];
     coupling.interpolate(&f, &mut read);
     let lhs = read[0].dot(forces[0]) + read[1].dot(forces[1]);

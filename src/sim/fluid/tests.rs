@@ -7,7 +7,7 @@ use glam::Vec2;
 /// Spreads point forces as the slice does: through the points' stencils (`Coupling`).
 fn spread(f: &mut Fluid, points: &[Vec2], forces: &[Vec2]) {
     let mut coupling = Coupling::default();
-    coupling.locate(f, points);
+    coupling.locate(f, points, &[]);
     coupling.spread(f, forces);
 }
 
@@ -91,7 +91,7 @@ fn interpolation_and_spreading_are_adjoint() {
     let p = Vec2::new(0.0937, 0.1411);
     let force = Vec2::new(0.7, -0.3);
     let mut coupling = Coupling::default();
-    coupling.locate(&f, &[p]);
+    coupling.locate(&f, &[p], &[]);
     let mut read = [Vec2::ZERO];
     coupling.interpolate(&f, &mut read);
     assert_eq!(

@@ -62,7 +62,8 @@ impl SliceSim {
     fn step(&mut self, dt: f32, phase: f32, depth: f32) {
         self.set_muscles(phase, depth);
         self.substeps += 1;
-        self.coupling.locate(&self.fluid, &self.body.points);
+        self.coupling
+            .locate(&self.fluid, &self.body.points, self.body.mirror_partners());
         self.coupling.interpolate(&self.fluid, &mut self.velocity);
         for ((x, v), p) in self
             .body
