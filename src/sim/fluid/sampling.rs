@@ -76,7 +76,7 @@ pub(super) fn cubic_sample4(
         }
     }
     let (a, b) = (&values[1], &values[2]);
-    std::array::from_fn(|lane| {
+    four(|lane| {
         within(
             value[lane],
             [a[1][lane], a[2][lane], b[1][lane], b[2][lane]],
@@ -330,18 +330,27 @@ pub(super) fn four<T>(f: impl Fn(usize) -> T) -> [T; 4] {
 fn sixteen(field: &[f32], nx: usize, ny: usize, i: usize, j: usize) -> [[f32; 4]; 4] {
     if i >= 1 && i + 2 < nx && j >= 1 && j + 2 < ny {
         // Inside: four runs of four, one bounds check for the sixteen.
+        // Row by row, written out: through a closure each row was a call.
         let block = &field[(j - 1) * nx + i - 1..][..3 * nx + 4];
-        std::array::from_fn(|b| {
-            let r = &block[b * nx..][..4];
-            [r[0], r[1], r[2], r[3]]
-        })
+        let (r0, r1) = (&block[..4], &block[nx..][..4]);
+        let (r2, r3) = (&block[2 * nx..][..4], &block[3 * nx..][..4]);
+        [
+            [r0[0], r0[1], r0[2], r0[3]],
+            [r1[0], r1[1], r1[2], r1[3]],
+            [r2[0], r2[1], r2[2], r2[3]],
+            [r3[0], r3[1], r3[2], r3[3]],
+        ]
     } else {
-        let col = |d: usize| (i + d).saturating_sub(1).min(nx - 1);
-        let cols = [col(0), col(1), col(2), col(3)];
-        std::array::from_fn(|b| {
-            let r = &field[(j + b).saturating_sub(1).min(ny - 1) * nx..][..nx];
-            cols.map(|c| r[c])
-        })
+        let cols = four(|d| (i + d).saturating_sub(1).min(nx - 1));
+        let row = |b: usize| &field[(j + b).saturating_sub(1).min(ny - 1) * nx..][..nx];
+        let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
+        let [c0, c1, c2, c3] = cols;
+        [
+            [r0[c0], r0[c1], r0[c2], r0[c3]],
+            [r1[c0], r1[c1], r1[c2], r1[c3]],
+            [r2[c0], r2[c1], r2[c2], r2[c3]],
+            [r3[c0], r3[c1], r3[c2], r3[c3]],
+        ]
     }
 }
 
