@@ -15,16 +15,26 @@ use glam::Vec2;
 pub(crate) struct Coupling {
     u: Vec<Stencil>,
     v: Vec<Stencil>,
-    /// `(point, partner)` for each point read as the mirror image of its partner (an
-    /// axisymmetric slice's points past the axis, out of the solved half's reach).
-    mirrored: Vec<(usize, usize)>,
+    /// The points read as their partner's mirror image (an axisymmetric slice's points
+    /// past the axis), ascending.
+    mirrored: Vec<Mirrored>,
+}
+
+/// A point past the axis of an axisymmetric slice, read through its partner's stencils.
+#[derive(Clone, Copy)]
+struct Mirrored {
+    point: usize,
+    partner: usize,
+    /// Its stencils reach the solved half, so its force is spread there.
+    near: bool,
 }
 
 impl Coupling {
     /// Finds the stencils of `points` on `fluid`'s grid. `partners[i]`, where given, is the
-    /// point `i` is the mirror image of: an axisymmetric slice solves its water on the half
-    /// before the axis, so a point past it whose stencils all lie in the other half is
-    /// read as its partner's mirror and spreads nothing (`docs/numerics.md`).
+    /// point `i` is the mirror image of: an axisymmetric slice's water is mirrored about
+    /// its axis, so such a point reads its partner's velocity mirrored and spreads through
+    /// its partner's stencils mirrored; only where those reach the solved half (the rings
+    /// near the axis), since the projection overwrites the rest (`docs/numerics.md`).
     pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2], partners: &[Option<usize>]) {
         // In place: a stencil built and then moved was read back before its own stores
         // had landed (a store-forwarding stall per copy).
@@ -33,10 +43,13 @@ impl Coupling {
         self.mirrored.clear();
         let partner = |i: usize| partners.get(i).copied().flatten();
         for (i, ((p, u), v)) in points.iter().zip(&mut self.u).zip(&mut self.v).enumerate() {
-            if let Some(j) = partner(i)
-                && fluid.beyond_the_solved_half(*p)
-            {
-                self.mirrored.push((i, j));
+            if let Some(partner) = partner(i) {
+                let near = !fluid.beyond_the_solved_half(*p);
+                self.mirrored.push(Mirrored {
+                    point: i,
+                    partner,
+                    near,
+                });
                 continue;
             }
             fluid.locate(Component::U, *p, u);
@@ -44,15 +57,17 @@ impl Coupling {
         }
     }
 
-    /// How many points the last [`Self::locate`] read as their partners' mirrors.
+    /// How many points the last [`Self::locate`] read as their partners' mirrors, and how
+    /// many of them spread near the axis.
     #[cfg(test)]
-    pub(crate) fn mirrored(&self) -> usize {
-        self.mirrored.len()
+    pub(crate) fn mirrored(&self) -> (usize, usize) {
+        let near = self.mirrored.iter().filter(|m| m.near).count();
+        (self.mirrored.len(), near)
     }
 
     /// Fluid velocity at each located point.
     pub(crate) fn interpolate(&self, fluid: &Fluid, out: &mut [Vec2]) {
-        let mut skip = self.mirrored.iter().map(|&(i, _)| i).peekable();
+        let mut skip = self.mirrored.iter().map(|m| m.point).peekable();
         for (i, ((o, su), sv)) in out.iter_mut().zip(&self.u).zip(&self.v).enumerate() {
             if skip.next_if_eq(&i).is_some() {
                 continue;
@@ -60,8 +75,8 @@ impl Coupling {
             *o = Vec2::new(su.sample(&fluid.u), sv.sample(&fluid.v));
         }
         // The water is mirrored about the axis: `u` odd, `v` even.
-        for &(i, j) in &self.mirrored {
-            out[i] = Vec2::new(-out[j].x, out[j].y);
+        for m in &self.mirrored {
+            out[m.point] = Vec2::new(-out[m.partner].x, out[m.partner].y);
         }
     }
 
@@ -69,15 +84,25 @@ impl Coupling {
     /// planar slice, a radian of an axisymmetric one's rings) to the fluid's force
     /// density, over each face's volume per unit depth.
     pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
+        let n = fluid.n;
         let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
         let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
-        let mut skip = self.mirrored.iter().map(|&(i, _)| i).peekable();
+        let mut skip = self.mirrored.iter().map(|m| m.point).peekable();
         for (i, ((f, su), sv)) in forces.iter().zip(&self.u).zip(&self.v).enumerate() {
             if skip.next_if_eq(&i).is_some() {
                 continue;
             }
             su.spread(f.x, scale_u, force_u);
             sv.spread(f.y, scale_v, force_v);
+        }
+        let (mirror_u, mirror_v) = (
+            |a| Component::U.mirrored_column(a, n),
+            |a| Component::V.mirrored_column(a, n),
+        );
+        for m in self.mirrored.iter().filter(|m| m.near) {
+            let f = forces[m.point];
+            self.u[m.partner].spread_mirrored(f.x, scale_u, force_u, mirror_u);
+            self.v[m.partner].spread_mirrored(f.y, scale_v, force_v, mirror_v);
         }
     }
 }

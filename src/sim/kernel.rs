@@ -93,6 +93,27 @@ impl Stencil {
             }
         }
     }
+
+    /// [`Self::spread`] for the stencil's point mirrored about a vertical axis: each
+    /// column `a` becomes `mirror(a)` (dropped where that is off the grid), the weights
+    /// the same, so a ring's partner across the axis needs no stencil of its own.
+    pub(crate) fn spread_mirrored(
+        &self,
+        value: f32,
+        scale: &[f32],
+        field: &mut [f32],
+        mirror: impl Fn(usize) -> Option<usize>,
+    ) {
+        let (x, y) = (&self.x, &self.y);
+        for b in 0..y.len {
+            let (start, wy) = (y.index[b] as usize * self.row, y.weight[b]);
+            for a in 0..x.len {
+                if let Some(column) = mirror(x.index[a] as usize) {
+                    field[start + column] += x.weight[a] * wy * value * scale[column];
+                }
+            }
+        }
+    }
 }
 
 /// How far from a point, in cells, the faces of its stencil can lie: no face further

@@ -107,7 +107,7 @@ fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
     let (mut all, mut half) = (Coupling::default(), Coupling::default());
     all.locate(&f, &points, &[]);
     half.locate(&f, &points, &partners);
-    assert_eq!(half.mirrored(), 2, "the two pairs far from the axis");
+    assert_eq!(half.mirrored(), (5, 3), "every partner, three within reach");
     let (mut read_all, mut read_half) = (vec![Vec2::ZERO; 10], vec![Vec2::ZERO; 10]);
     all.interpolate(&f, &mut read_all);
     half.interpolate(&f, &mut read_half);
@@ -115,7 +115,8 @@ fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
     for (a, b) in read_all.iter().zip(&read_half) {
         assert!((*a - *b).abs().max_element() <= 1e-5 * scale, "{a} vs {b}");
     }
-    // What reaches the solved half is the same, bit for bit; the rest is dropped anyway.
+    // What reaches the solved half is the same, to rounding (a partner's stencil mirrored
+    // is the point's own, computed from a position mirrored in f32); the rest is dropped.
     let mut g = f.clone();
     all.spread(&mut f, &forces);
     half.spread(&mut g, &forces);
@@ -124,9 +125,11 @@ fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
         (&f.force_u, &g.force_u, n + 1, solved + 1),
         (&f.force_v, &g.force_v, n, solved),
     ] {
+        let scale = field.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        assert!(scale > 0.0);
         for (a, b) in field.chunks_exact(row).zip(other.chunks_exact(row)) {
             for (x, y) in a[..columns].iter().zip(&b[..columns]) {
-                assert_eq!(x.to_bits(), y.to_bits());
+                assert!((x - y).abs() <= 1e-5 * scale, "{x} vs {y}");
             }
         }
     }

@@ -1,8 +1,8 @@
 //! The mirror about the bell's axis: a slice that is held mirror-symmetric averages its
 //! flow with its mirror image, and advection traces only half the faces.
 
-use super::Fluid;
 use super::sampling::cell;
+use super::{Component, Fluid};
 
 impl Fluid {
     /// The vertical line the slice is mirror-symmetric about, m: the centre of the middle
@@ -40,6 +40,18 @@ impl Fluid {
                     row[m] = avg;
                 }
             }
+        }
+    }
+}
+
+impl Component {
+    /// The column of this component's faces mirrored about [`Fluid::axis`] on an
+    /// `n`-cell grid (the indices of [`Fluid::symmetrise`]), if it is on the grid.
+    pub(crate) fn mirrored_column(self, column: usize, n: usize) -> Option<usize> {
+        let c = n / 2;
+        match self {
+            Component::U => (2 * c + 1).checked_sub(column).filter(|&m| m <= n),
+            Component::V => (2 * c).checked_sub(column).filter(|&m| m < n),
         }
     }
 }
