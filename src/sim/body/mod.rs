@@ -372,10 +372,10 @@ impl Body {
                 -0.25 * (f[i - 1] - 2.0 * f[i] + f[i + 1])
             }
         };
+        // The shift reads the forces only, so it moves the points as it goes.
         let first = self.bell.start;
-        let shift: Vec<Vec2> = (0..n).map(|i| dt2_over_mass[first + i] * high(i)).collect();
-        for (p, d) in self.points[self.bell.clone()].iter_mut().zip(shift) {
-            *p += d;
+        for (i, p) in self.points[self.bell.clone()].iter_mut().enumerate() {
+            *p += dt2_over_mass[first + i] * high(i);
         }
     }
 
