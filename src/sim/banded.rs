@@ -83,32 +83,32 @@ impl BandedSpd {
         let (n, b) = (self.n, self.band);
         let w = b + 1;
         for i in 0..n {
+            // Row i's entries run from column `first`; every column j of it shares that
+            // start with row j (j − b ≤ i − b), so each sum runs over k in first..j.
             let first = i.saturating_sub(b);
             let (done, rest) = self.lower.split_at_mut(i * w);
             let row_i = &mut rest[..w];
-            for j in first..=i {
-                // Σ over k in start..j of L[i][k]·L[j][k], k ascending: both rows are
-                // stored from the diagonal down, so their entries run backwards.
-                let start = first.max(j.saturating_sub(b));
+            for j in first..i {
+                // Σ over k ascending of L[i][k]·L[j][k]: both rows are stored from the
+                // diagonal down, so `t` counts down as k counts up.
+                let terms = j - first;
+                let row_j = &done[j * w..][..w];
+                let (ik, jk) = (&row_i[i - j + 1..][..terms], &row_j[1..][..terms]);
                 let mut sum = row_i[i - j];
-                if i == j {
-                    for &l in row_i[1..=i - start].iter().rev() {
-                        sum -= l * l;
-                    }
-                    if sum <= 0.0 || !sum.is_finite() {
-                        return false;
-                    }
-                    row_i[0] = sum.sqrt();
-                    self.inverse[i] = 1.0 / row_i[0];
-                } else {
-                    let row_j = &done[j * w..][..w];
-                    let ik = row_i[i - j + 1..=i - start].iter().rev();
-                    for (l_ik, l_jk) in ik.zip(row_j[1..=j - start].iter().rev()) {
-                        sum -= l_ik * l_jk;
-                    }
-                    row_i[i - j] = sum * self.inverse[j];
+                for t in (0..terms).rev() {
+                    sum -= ik[t] * jk[t];
                 }
+                row_i[i - j] = sum * self.inverse[j];
             }
+            let mut sum = row_i[0];
+            for &l in row_i[1..=i - first].iter().rev() {
+                sum -= l * l;
+            }
+            if sum <= 0.0 || !sum.is_finite() {
+                return false;
+            }
+            row_i[0] = sum.sqrt();
+            self.inverse[i] = 1.0 / row_i[0];
         }
         // Forward: L y = rhs.
         for i in 0..n {
