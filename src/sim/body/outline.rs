@@ -29,6 +29,65 @@ pub(crate) fn crosses_itself(points: &[Vec2]) -> bool {
     if n < 4 {
         return false;
     }
+    if n > SWEPT || !points.iter().all(|p| p.is_finite()) {
+        return crosses_itself_pairwise(points);
+    }
+    // Sweep along x: the edges by the left end of their boxes, each tested only against
+    // those whose box starts before its own ends (a bell's two flanks never meet them).
+    // The same pairs pass the box test as in the pairwise check, so the same answer.
+    let edge = |i: usize| (points[i], points[(i + 1) % n]);
+    // Each edge as its box's left end (ordered bits of a finite f32) above its index, so
+    // that one integer sort orders them.
+    let mut order = [0u64; SWEPT];
+    let order = &mut order[..n];
+    for (i, o) in order.iter_mut().enumerate() {
+        let (a, b) = edge(i);
+        *o = (u64::from(ordered_bits(a.x.min(b.x))) << 32) | i as u64;
+    }
+    order.sort_unstable();
+    for (s, &i) in order.iter().enumerate() {
+        let i = i as u32;
+        let (a, b) = edge(i as usize);
+        let (lo, hi) = (a.min(b), a.max(b));
+        for &j in &order[s + 1..] {
+            let j = j as u32;
+            let (c, d) = edge(j as usize);
+            if c.x.min(d.x) > hi.x {
+                break;
+            }
+            let (i, j) = (i.min(j) as usize, i.max(j) as usize);
+            // Neighbours share a corner, the first and the last edge too.
+            if j == i + 1 || (i == 0 && j == n - 1) {
+                continue;
+            }
+            if c.max(d).cmplt(lo).any() || c.min(d).cmpgt(hi).any() {
+                continue;
+            }
+            if segments_cross(a, b, c, d) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// A finite `x`'s bits, ordered as `x` is: the sign bit flipped for positives, every bit
+/// for negatives.
+fn ordered_bits(x: f32) -> u32 {
+    let bits = x.to_bits();
+    if bits >> 31 == 0 {
+        bits | 1 << 31
+    } else {
+        !bits
+    }
+}
+
+/// Outlines of at most this many points are swept (sorted on the stack).
+const SWEPT: usize = 512;
+
+/// [`crosses_itself`] edge pair by edge pair: every pair whose boxes meet.
+fn crosses_itself_pairwise(points: &[Vec2]) -> bool {
+    let n = points.len();
     let edge = |i: usize| (points[i], points[(i + 1) % n]);
     for i in 0..n {
         let (a, b) = edge(i);
@@ -126,6 +185,36 @@ impl Outline {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sweep finds a crossing exactly where the pairwise check does: random walks
+    /// that fold back on themselves now and then, and ones that never do.
+    #[test]
+    fn the_sweep_is_the_pairwise_check() {
+        let mut seed = 7u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        let (mut crossed, mut whole) = (0, 0);
+        for trial in 0..400 {
+            let n = 4 + trial % 60;
+            let wiggle = [0.05, 0.3, 1.5][trial % 3];
+            let points: Vec<Vec2> = (0..n)
+                .map(|k| {
+                    let t = std::f32::consts::PI * (1.0 - k as f32 / (n - 1) as f32);
+                    let jitter = Vec2::new(next() - 0.5, next() - 0.5) * wiggle;
+                    Vec2::new(t.cos(), 0.7 * t.sin()) + jitter
+                })
+                .collect();
+            let expected = crosses_itself_pairwise(&points);
+            assert_eq!(crosses_itself(&points), expected, "trial {trial}");
+            if expected { crossed += 1 } else { whole += 1 }
+        }
+        assert!(
+            crossed > 50 && whole > 50,
+            "{crossed} crossed, {whole} whole"
+        );
+    }
 
     fn dome() -> Vec<Vec2> {
         (0..=20)
