@@ -167,7 +167,8 @@ impl Solver {
             self.matrix.add(2 * o + 1, 2 * o + 1, d);
         }
         for &j in &self.mirrored {
-            let (o, d) = (self.order[j].map_or(0, |p| p.at), diag(j) as f64);
+            let place = self.order[j].expect("a mirrored point has a place");
+            let (o, d) = (place.at, diag(j) as f64);
             self.matrix.add(2 * o, 2 * o, d);
             self.matrix.add(2 * o + 1, 2 * o + 1, d);
         }
