@@ -81,6 +81,21 @@ impl Solver {
         }
     }
 
+    /// The bell's solver and the tentacles', for a body of `count` points, on the half
+    /// `partners` leaves (all of it when there are none).
+    pub(crate) fn pair(
+        count: usize,
+        bell: &Range<usize>,
+        tentacles: &[Range<usize>; 2],
+        partners: &[Option<usize>],
+    ) -> [Self; 2] {
+        let half = !partners.is_empty();
+        [
+            Self::new(count, Self::bell_order(bell, half), partners),
+            Self::new(count, Self::tentacle_order(tentacles, half), partners),
+        ]
+    }
+
     /// The bell numbered from the apex outwards, alternating sides: every spring, hinge
     /// and muscle then couples points a few places apart. Of a body of revolution
     /// (`half`), its half from the left margin to the apex, in the chain's order.

@@ -62,8 +62,9 @@ pub struct Body {
     pub(crate) tentacle_drag: Vec<f32>,
     /// Per unit of what depth every element is (a metre of a plane, a radian of rings).
     pub(crate) depth: Depth,
-    /// Of a body of revolution (an r–z slice), each point past the axis's partner before
-    /// it, whose mirror image it is (`None` before the axis and on it; empty in the plane).
+    /// Of a mirror-symmetric body (a body of revolution, or a planar one held
+    /// symmetric), each point past the axis's partner before it, whose mirror image it is
+    /// (`None` before the axis and on it; empty for a planar body free to tilt).
     mirror_partners: Vec<Option<usize>>,
     drag_model: TentacleDrag,
     bell_solver: Solver,
@@ -110,7 +111,8 @@ impl Body {
     /// adding wrinkles the water cannot hold straight (they crossed the outline at 2·G).
     ///
     /// In the axisymmetric geometry the axis is the vertical through `origin`, every point
-    /// a ring about it, and the muscle a hoop of each ring.
+    /// a ring about it, and the muscle a hoop of each ring. Either is mirror-symmetric
+    /// about it and solved on its half (see [`Body::set_mirror_symmetric`]).
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
         let outline = rest_outline(species, h * species.kernel_stretch_at(h));
         let bell_len = outline.len();
@@ -138,16 +140,9 @@ impl Body {
             depth,
         );
 
-        let half = depth.rings();
-        let mirror_partners = if half {
-            mirror_partners(bell_len, &tentacles, points.len())
-        } else {
-            Vec::new()
-        };
-        let bell_order = Solver::bell_order(&(0..bell_len), half);
-        let bell_solver = Solver::new(points.len(), bell_order, &mirror_partners);
-        let tentacle_order = Solver::tentacle_order(&tentacles, half);
-        let tentacle_solver = Solver::new(points.len(), tentacle_order, &mirror_partners);
+        let mirror_partners = mirror_partners(bell_len, &tentacles, points.len());
+        let [bell_solver, tentacle_solver] =
+            Solver::pair(points.len(), &(0..bell_len), &tentacles, &mirror_partners);
         let scratch = vec![Vec2::ZERO; points.len()];
         let drag_model = TentacleDrag::new(species, seg_len, depth);
         Self {
@@ -178,9 +173,29 @@ impl Body {
     }
 
     /// Each point's partner across the axis, whose mirror image it is: the points past
-    /// the axis of a body of revolution (empty for a planar body).
+    /// the axis of a mirror-symmetric body (empty for a planar body free to tilt).
     pub(crate) fn mirror_partners(&self) -> &[Option<usize>] {
         &self.mirror_partners
+    }
+
+    /// Holds a planar body mirror-symmetric, solved on its half with the points past the
+    /// axis its mirror images (`true`, as built), or lets it tilt, every point solved
+    /// (`false`). A body of revolution is always symmetric.
+    pub(crate) fn set_mirror_symmetric(&mut self, on: bool) {
+        if self.depth.rings() || on != self.mirror_partners.is_empty() {
+            return;
+        }
+        self.mirror_partners = if on {
+            mirror_partners(self.bell.len(), &self.tentacles, self.points.len())
+        } else {
+            Vec::new()
+        };
+        [self.bell_solver, self.tentacle_solver] = Solver::pair(
+            self.points.len(),
+            &self.bell,
+            &self.tentacles,
+            &self.mirror_partners,
+        );
     }
 
     /// The subumbrella's points, left margin to right margin.

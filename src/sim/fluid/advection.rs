@@ -132,8 +132,8 @@ enum Mirror {
     No,
     /// All of them: the next steps read the whole field.
     Whole,
-    /// Only the column just past the axis: an axisymmetric slice's force, viscosity and
-    /// divergence read no further before its projection mirrors the rest (the same bits
+    /// Only the column just past the axis: a slice solved on its half (see
+    /// [`Fluid::half`]) reads no further before its projection mirrors the rest (the same bits
     /// as [`Mirror::Whole`], a pass over half the field fewer).
     PastAxis,
 }
@@ -146,7 +146,7 @@ impl Mirror {
 
     /// What one step of `fluid`'s own advection needs.
     fn of(fluid: &Fluid) -> Self {
-        match (fluid.mirror, fluid.rings().is_some()) {
+        match (fluid.mirror, fluid.half().is_some()) {
             (false, _) => Mirror::No,
             (true, false) => Mirror::Whole,
             (true, true) => Mirror::PastAxis,

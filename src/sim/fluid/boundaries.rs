@@ -31,11 +31,11 @@ impl Fluid {
 
     /// Relaxes the velocity in the absorbing layer towards the stream (implicit Euler:
     /// stable for any rate and step). Only the rows within the layer: elsewhere there is
-    /// nothing to relax, and a planar slice's `n` columns or an axisymmetric slice's
+    /// nothing to relax, and a planar slice's `n` columns or a mirror-symmetric slice's
     /// solved half (the projection mirrors the rest).
     pub(crate) fn absorb(&mut self, dt: f32) {
         let n = self.n;
-        let columns = self.rings().map_or(n, |r| r.solved);
+        let columns = self.half().map_or(n, |r| r.solved);
         let stream = self.stream;
         for (u, rate) in self
             .u

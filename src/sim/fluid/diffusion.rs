@@ -5,6 +5,8 @@ use super::{Fluid, RINGS_SWEEP_LIMIT, Walls};
 
 /// Most explicit diffusion sweeps in one step (see [`Fluid::diffuse`]).
 pub(crate) const MAX_DIFFUSION_SWEEPS: usize = 32;
+/// Largest `ν·dt/h²` of one explicit sweep of the plane's Laplacian (stable below 1/4).
+const PLANE_SWEEP_LIMIT: f32 = 0.2;
 
 impl Fluid {
     /// Viscosity, explicit, sub-stepped where `ν·dt/h²` would be unstable. For sea water at
@@ -20,19 +22,22 @@ impl Fluid {
         if alpha.is_nan() || alpha <= 0.0 {
             return;
         }
-        if let Some(mut rings) = self.rings.take() {
-            // The same cap on the viscosity as the plane's, in sweeps half as long.
-            let most = MAX_DIFFUSION_SWEEPS * 2;
-            let substeps = ((alpha / RINGS_SWEEP_LIMIT).ceil() as usize).clamp(1, most);
-            let a = (alpha / substeps as f32).min(RINGS_SWEEP_LIMIT);
+        if let Some(mut half) = self.take_half() {
+            // Rings: the same cap on the viscosity as the plane's, in sweeps half as long.
+            let (limit, most) = if half.axisymmetric() {
+                (RINGS_SWEEP_LIMIT, MAX_DIFFUSION_SWEEPS * 2)
+            } else {
+                (PLANE_SWEEP_LIMIT, MAX_DIFFUSION_SWEEPS)
+            };
+            let substeps = ((alpha / limit).ceil() as usize).clamp(1, most);
+            let a = (alpha / substeps as f32).min(limit);
             for _ in 0..substeps {
-                self.ring_viscosity_sweep(&mut rings, a);
+                self.ring_viscosity_sweep(&mut half, a);
             }
-            self.rings = Some(rings);
-            return;
+            return self.put_half(half);
         }
-        let substeps = ((alpha / 0.2).ceil() as usize).clamp(1, MAX_DIFFUSION_SWEEPS);
-        let a = (alpha / substeps as f32).min(0.2);
+        let substeps = ((alpha / PLANE_SWEEP_LIMIT).ceil() as usize).clamp(1, MAX_DIFFUSION_SWEEPS);
+        let a = (alpha / substeps as f32).min(PLANE_SWEEP_LIMIT);
         let n = self.n;
         for _ in 0..substeps {
             laplacian_step(&self.u, &mut self.scratch_u, n + 1, n, a);

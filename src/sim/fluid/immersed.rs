@@ -2,6 +2,7 @@
 //! around them and spread their forces back onto the same faces with the same weights,
 //! which makes interpolation and spreading adjoint and spreading exactly force-conserving.
 
+use super::symmetry::mirror_past_axis;
 use super::{Component, Fluid};
 use crate::sim::kernel::{Stencil, reach};
 use glam::Vec2;
@@ -10,12 +11,12 @@ impl Fluid {
     /// Adds the accumulated force density, then clears it.
     pub(crate) fn apply_force(&mut self, dt: f32) {
         let scale = dt / self.rho;
-        if let Some(solved) = self.rings().map(|r| r.solved) {
-            // The solved half (and the `u` face past the axis, which its divergence reads)
-            // only: the projection mirrors it over the rest.
+        if let Some(solved) = self.half().map(|r| r.solved) {
+            // The solved half only, then the faces just past the axis (which its viscosity
+            // and divergence read) its mirror image: the projection mirrors the rest.
             let n = self.n;
             for (field, force, row, columns) in [
-                (&mut self.u, &mut self.force_u, n + 1, solved + 1),
+                (&mut self.u, &mut self.force_u, n + 1, solved),
                 (&mut self.v, &mut self.force_v, n, solved),
             ] {
                 for (u, f) in field.chunks_exact_mut(row).zip(force.chunks_exact(row)) {
@@ -25,6 +26,7 @@ impl Fluid {
                 }
                 force.fill(0.0);
             }
+            mirror_past_axis(&mut self.u, &mut self.v, n);
             self.enforce_walls();
             return;
         }
@@ -71,7 +73,7 @@ impl Fluid {
     /// projection mirrors the solved half over it), and what it reads is the mirror image
     /// of what its partner before the axis reads. Always false in the plane.
     pub(crate) fn beyond_the_solved_half(&self, p: Vec2) -> bool {
-        let Some(solved) = self.rings().map(|r| r.solved) else {
+        let Some(solved) = self.half().map(|r| r.solved) else {
             return false;
         };
         // The first `u` face of its stencil past the last one applied (`solved`), with a

@@ -95,6 +95,9 @@ pub struct Fluid {
     poisson: PoissonSolver,
     /// The radii and pressure solve of an axisymmetric slice; `None` for a planar one.
     rings: Option<Box<Rings>>,
+    /// A planar slice's mirrored half, solved while the slice is held mirror-symmetric in
+    /// the channel (see [`Fluid::take_half`]).
+    plane_half: Option<Box<Rings>>,
     /// What a unit of spread force adds to the force density of each column of `u` and
     /// `v` faces: `1/h²` in the plane, `1/(r·h²)` for rings (a face's volume per unit of
     /// the slice's depth).
@@ -142,6 +145,7 @@ impl Fluid {
             phi: vec![0.0; n * n],
             poisson: PoissonSolver::new(n, h),
             rings: None,
+            plane_half: Some(Box::new(Rings::mirrored_plane(n, h))),
             spread_u: vec![1.0 / (h * h); n + 1],
             spread_v: vec![1.0 / (h * h); n],
         }
@@ -197,6 +201,7 @@ impl Fluid {
             + (self.bounds_u.len() + self.bounds_v.len()) * 8
             + self.poisson.bytes()
             + self.rings.as_ref().map_or(0, |r| r.bytes())
+            + self.plane_half.as_ref().map_or(0, |r| r.bytes())
             + (self.spread_u.len() + self.spread_v.len()) * 4
     }
 
@@ -206,9 +211,11 @@ impl Fluid {
     ///    step, then cleared;
     /// 3. [`diffuse`](Fluid::diffuse): viscosity;
     /// 4. [`absorb`](Fluid::absorb): the wake's absorbing layer;
-    /// 5. [`symmetrise`](Fluid::symmetrise), when a planar slice is held mirror-symmetric
-    ///    (an axisymmetric one is solved on its half and mirrored by the projection);
-    /// 6. [`project`](Fluid::project): the pressure that leaves the flow divergence-free.
+    /// 5. [`project`](Fluid::project): the pressure that leaves the flow divergence-free.
+    ///
+    /// A mirror-symmetric slice (axisymmetric, or planar and held symmetric) is solved on
+    /// its half and mirrored by the projection; only a closed test box held symmetric is
+    /// [`symmetrise`](Fluid::symmetrise)d before it.
     ///
     /// Stam's stable fluids (1999) add the force first and then advect; here advection
     /// comes first, so the force acts on the faces it was spread to and is not carried
@@ -219,8 +226,7 @@ impl Fluid {
         self.apply_force(dt);
         self.diffuse(dt);
         self.absorb(dt);
-        // An axisymmetric slice is solved on its half and mirrored by the projection.
-        if self.mirror && self.rings.is_none() {
+        if self.mirror && self.half().is_none() {
             self.symmetrise();
         }
         self.project();

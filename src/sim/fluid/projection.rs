@@ -6,8 +6,9 @@ use super::Fluid;
 impl Fluid {
     /// Removes the divergent part of the velocity with an exact Poisson solve.
     pub(crate) fn project(&mut self) {
-        if self.rings.is_some() {
-            return self.project_rings();
+        if let Some(mut half) = self.take_half() {
+            self.project_half(&mut half);
+            return self.put_half(half);
         }
         let (n, h) = (self.n, self.h);
         // φ = div u per cell (as `divergence` computes it), row by row.
@@ -47,7 +48,7 @@ impl Fluid {
 
     /// Discrete divergence of cell `(i, j)`, 1/s (r-weighted in an axisymmetric slice).
     pub(crate) fn divergence(&self, i: usize, j: usize) -> f32 {
-        if let Some(rings) = self.rings() {
+        if let Some(rings) = self.half() {
             return self.ring_divergence(rings, i, j);
         }
         let n = self.n;
@@ -56,11 +57,11 @@ impl Fluid {
         (du + dv) / self.h
     }
 
-    /// max |div u| after the last projection, 1/s (an axisymmetric slice: over its solved
-    /// half, the mirrored one being its copy). Measured on demand, so the step does not
-    /// pay for a diagnostic.
+    /// max |div u| after the last projection, 1/s (a mirror-symmetric slice: over its
+    /// solved half, the mirrored one being its copy). Measured on demand, so the step does
+    /// not pay for a diagnostic.
     pub(crate) fn divergence_max(&self) -> f32 {
-        if let Some(rings) = self.rings() {
+        if let Some(rings) = self.half() {
             return self.ring_divergence_max(rings);
         }
         let n = self.n;

@@ -21,12 +21,17 @@
 //! - a point of the bell is a ring: its force (per radian) spreads onto each face over the
 //!   face's volume per radian `r·h²`, so the total force is exact and spreading is the
 //!   adjoint of interpolation in the r-weighted inner product.
+//!
+//! A planar slice held mirror-symmetric is solved on the same half with every weight 1
+//! ([`Rings::mirrored_plane`]): the plane's divergence, viscosity and pressure, the axis
+//! a mirror.
 
 use super::Fluid;
 use super::symmetry::mirror;
-use crate::sim::pressure::RingPoissonSolver;
+use crate::sim::pressure::{Across, RingPoissonSolver};
 
-/// The radii of an axisymmetric slice's faces and cells, and its pressure solve.
+/// The radii of an axisymmetric slice's faces and cells, and its pressure solve (every
+/// radius 1 for a planar slice's mirrored half).
 #[derive(Clone)]
 pub(crate) struct Rings {
     /// |x − axis| of each column of `u` faces, m (`n + 1`).
@@ -41,6 +46,8 @@ pub(crate) struct Rings {
     /// A no-slip outer wall for the viscous term (a pipe: test set-ups only; the slice's
     /// wall is free-slip, as the plane's are).
     pub(crate) no_slip_wall: bool,
+    /// The operator across: r-weighted rings, or the plane's mirrored half.
+    across_operator: Across,
     solver: RingPoissonSolver,
     /// φ row by row across the radius, the wall first (the projection's work space).
     across: Vec<f32>,
@@ -75,10 +82,35 @@ impl Rings {
             cell,
             solved: c + 1,
             no_slip_wall: false,
+            across_operator: Across::Rings,
             solver: RingPoissonSolver::new(c + 1, n, h),
             across: vec![0.0; (c + 1) * n],
             flux: vec![0.0; c + 1],
         }
+    }
+
+    /// The half of a planar slice held mirror-symmetric about the centre of column `n/2`:
+    /// every weight 1, so the same passes are the plane's operators. On an even grid the
+    /// mirrored half is a box one cell wider than the grid: its wall's image lies past the
+    /// last column, which is never read back.
+    pub(crate) fn mirrored_plane(n: usize, h: f32) -> Self {
+        let c = n / 2;
+        Self {
+            face: vec![1.0; n + 1],
+            cell: vec![1.0; n],
+            inverse_cell: vec![1.0; n],
+            solved: c + 1,
+            no_slip_wall: false,
+            across_operator: Across::MirroredPlane,
+            solver: RingPoissonSolver::across(Across::MirroredPlane, c + 1, n, h),
+            across: vec![0.0; (c + 1) * n],
+            flux: vec![0.0; c + 1],
+        }
+    }
+
+    /// Whether these are an axisymmetric slice's rings (not a planar half).
+    pub(crate) fn axisymmetric(&self) -> bool {
+        self.across_operator == Across::Rings
     }
 
     /// Heap bytes.
@@ -94,6 +126,35 @@ impl Fluid {
         self.rings.as_deref()
     }
 
+    /// The half this slice is solved on: an axisymmetric slice's rings, or a planar
+    /// slice's mirrored half while it is held mirror-symmetric in the channel; `None` for
+    /// a planar slice free to tilt, or a closed test box.
+    pub(crate) fn half(&self) -> Option<&Rings> {
+        if self.rings.is_some() {
+            self.rings.as_deref()
+        } else if self.mirror && !self.walls.is_closed() {
+            self.plane_half.as_deref()
+        } else {
+            None
+        }
+    }
+
+    /// [`Fluid::half`], taken out for a pass that also borrows the fields (give it back
+    /// with [`Fluid::put_half`]).
+    pub(super) fn take_half(&mut self) -> Option<Box<Rings>> {
+        self.half()?;
+        self.rings.take().or_else(|| self.plane_half.take())
+    }
+
+    /// Puts back what [`Fluid::take_half`] took.
+    pub(super) fn put_half(&mut self, half: Box<Rings>) {
+        if half.axisymmetric() {
+            self.rings = Some(half);
+        } else {
+            self.plane_half = Some(half);
+        }
+    }
+
     /// The r-weighted divergence of cell `(i, j)`, 1/s.
     pub(super) fn ring_divergence(&self, rings: &Rings, i: usize, j: usize) -> f32 {
         let (n, h) = (self.n, self.h);
@@ -102,12 +163,9 @@ impl Fluid {
         radial + (self.v[(j + 1) * n + i] - self.v[j * n + i]) / h
     }
 
-    /// The r–z projection: the r-weighted divergence of the solved half, the exact solve,
-    /// its gradient subtracted, the half mirrored.
-    pub(super) fn project_rings(&mut self) {
-        let Some(mut rings) = self.rings.take() else {
-            return;
-        };
+    /// The projection of a mirror-symmetric slice: the (r-weighted) divergence of the
+    /// solved half, the exact solve, its gradient subtracted, the half mirrored.
+    pub(super) fn project_half(&mut self, rings: &mut Rings) {
         let (n, c) = (self.n, rings.solved - 1);
         let inverse_h = 1.0 / self.h;
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
@@ -129,7 +187,9 @@ impl Fluid {
                 *d = (radial + (v1 - v0)) * inverse_h;
             }
         }
-        rings.solver.solve_across(across, &mut self.phi);
+        rings
+            .solver
+            .solve_across(across, &mut self.phi[..(c + 1) * n]);
         for j in 0..n {
             let phi = &across[j * (c + 1)..][..c + 1];
             let u = &mut self.u[j * (n + 1)..][..c + 1];
@@ -150,7 +210,6 @@ impl Fluid {
             }
         }
         mirror(&mut self.u, &mut self.v, None, None, n);
-        self.rings = Some(rings);
     }
 
     /// One explicit sweep of the r–z viscous operator, `a = ν·dt/h²`, on the solved half:
@@ -220,7 +279,7 @@ impl Fluid {
         self.enforce_walls();
     }
 
-    /// max |div u| over the solved half of an axisymmetric slice, 1/s.
+    /// max |div u| over the solved half, 1/s.
     pub(super) fn ring_divergence_max(&self, rings: &Rings) -> f32 {
         let n = self.n;
         (0..n)

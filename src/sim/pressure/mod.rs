@@ -4,17 +4,19 @@
 //! transform along it diagonalises the discrete Laplacian, leaving one tridiagonal system
 //! per mode across the other direction, solved by elimination (Thomas) in `f64`. Exact to
 //! round-off, O(N² log N), no iteration count to tune and no divergence left behind.
-//! - `channel`: the planar slice; a cosine transform across the channel (free-slip walls
-//!   on both sides), tridiagonal along it (inflow ahead, open wake end behind);
+//! - `channel`: a planar slice free to tilt (and the closed test box); a cosine transform
+//!   across the channel (free-slip walls on both sides), tridiagonal along it (inflow
+//!   ahead, open wake end behind);
 //! - `rings`: the axisymmetric slice; the r-weighted operator varies across the radius,
 //!   so the transform runs along the axis (a quarter-wave sine: open wake end, inflow)
-//!   and the tridiagonal systems across the radius, from the axis to the outer wall.
+//!   and the tridiagonal systems across the radius, from the axis to the outer wall. A
+//!   planar slice held mirror-symmetric is solved the same way on its half.
 
 mod channel;
 mod rings;
 
 pub(crate) use channel::PoissonSolver;
-pub(crate) use rings::RingPoissonSolver;
+pub(crate) use rings::{Across, RingPoissonSolver};
 
 use std::sync::Arc;
 

@@ -8,6 +8,10 @@
 //! leaving one tridiagonal system across the radius per mode: from the axis (no flux
 //! through r = 0) to the free-slip outer wall (no flux through it). Every mode's
 //! eigenvalue is negative, so every system is regular (no pinned constant).
+//!
+//! A planar slice held mirror-symmetric is solved the same way on its half
+//! ([`Across::MirroredPlane`]): the plane's operator across, from the axis (the mirror:
+//! the column past it is the one before it) to the free-slip wall.
 
 use super::{Factors, shared};
 use rustdct::{DctPlanner, TransformType4};
@@ -129,8 +133,17 @@ impl Along {
     }
 }
 
-/// The exact r–z pressure solve on `rings × n` cells: `rings` across the radius (the
-/// axis cell first), `n` along the axis.
+/// The operator across the solved half, from the axis to the wall.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub(crate) enum Across {
+    /// The r-weighted one of an axisymmetric slice ([`radial_operator`]).
+    Rings,
+    /// The plane's, mirrored at the axis ([`mirrored_plane_operator`]).
+    MirroredPlane,
+}
+
+/// The exact pressure solve on `rings × n` cells of a mirror-symmetric slice: `rings`
+/// columns across (the axis first), `n` along the axis.
 #[derive(Clone)]
 pub(crate) struct RingPoissonSolver {
     n: usize,
@@ -165,19 +178,43 @@ pub(crate) fn radial_operator(rings: usize, h: f64) -> (Vec<f64>, Vec<f64>, Vec<
     (lower, diagonal, upper)
 }
 
-fn factors(rings: usize, n: usize, h: f32) -> Arc<Factors> {
-    type Shared = Mutex<HashMap<(usize, usize, u32), Arc<Factors>>>;
+/// Coefficients of the plane's operator across `columns` cells of size `h` from the axis
+/// to the wall, as [`radial_operator`] gives them: the cell on the axis has its mirror
+/// image on both sides (the column past the axis is the one before it), the wall's cell
+/// no flux through the wall.
+pub(crate) fn mirrored_plane_operator(columns: usize, h: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let off = 1.0 / (h * h);
+    let (mut lower, mut diagonal, mut upper) =
+        (vec![0.0; columns], vec![0.0; columns], vec![0.0; columns]);
+    for k in 0..columns {
+        let wall = k + 1 == columns;
+        if k == 0 {
+            upper[0] = if wall { 0.0 } else { 2.0 * off };
+        } else {
+            lower[k] = off;
+            upper[k] = if wall { 0.0 } else { off };
+        }
+        diagonal[k] = -(lower[k] + upper[k]);
+    }
+    (lower, diagonal, upper)
+}
+
+fn factors(across: Across, rings: usize, n: usize, h: f32) -> Arc<Factors> {
+    type Shared = Mutex<HashMap<(Across, usize, usize, u32), Arc<Factors>>>;
     static FACTORS: OnceLock<Shared> = OnceLock::new();
     shared(
         FACTORS.get_or_init(Default::default),
-        (rings, n, h.to_bits()),
+        (across, rings, n, h.to_bits()),
         || {
             let (pi, h) = (std::f64::consts::PI, h as f64);
             let lambda: Vec<f64> = (0..n)
                 .map(|m| (2.0 * (pi * (m as f64 + 0.5) / n as f64).cos() - 2.0) / (h * h))
                 .collect();
             // Eliminated from the outer wall in to the axis: the fluid's column order.
-            let (lower, mut diagonal, upper) = radial_operator(rings, h);
+            let (lower, mut diagonal, upper) = match across {
+                Across::Rings => radial_operator(rings, h),
+                Across::MirroredPlane => mirrored_plane_operator(rings, h),
+            };
             let (mut inward_lower, mut inward_upper) = (upper, lower);
             for v in [&mut inward_lower, &mut inward_upper, &mut diagonal] {
                 v.reverse();
@@ -195,13 +232,18 @@ fn factors(rings: usize, n: usize, h: f32) -> Arc<Factors> {
 impl RingPoissonSolver {
     /// A solver for `rings` cells across the radius and `n` along the axis, of size `h`.
     pub(crate) fn new(rings: usize, n: usize, h: f32) -> Self {
+        Self::across(Across::Rings, rings, n, h)
+    }
+
+    /// A solver for `columns` cells across (the `across` operator) and `n` along the axis.
+    pub(crate) fn across(across: Across, columns: usize, n: usize, h: f32) -> Self {
         let along = Along::plan(n);
         let scratch = along.scratch();
         Self {
             n,
             along,
-            factors: factors(rings, n, h),
-            modes: vec![0.0; rings * n],
+            factors: factors(across, columns, n, h),
+            modes: vec![0.0; columns * n],
             scratch,
         }
     }
@@ -351,6 +393,36 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// A planar field that is mirror-symmetric about the middle column of an odd grid,
+    /// solved on its half, is the channel's solve of the whole field.
+    #[test]
+    fn the_mirrored_half_is_the_whole_planar_solve() {
+        for n in [15, 61, 101] {
+            let (c, h) = (n / 2, 0.004);
+            let rhs: Vec<f32> = (0..n * n)
+                .map(|q| {
+                    let (i, j) = ((q % n) as f32, (q / n) as f32);
+                    let x = (i - c as f32).abs() / n as f32;
+                    let y = (j + 0.5) / n as f32;
+                    (3.0 * x * x).cos() * (2.0 * y).sin() + 0.2 * (9.0 * x).sin() * y
+                        - 0.5 * (7.0 * x * y).cos()
+                })
+                .collect();
+            let mut whole = rhs.clone();
+            crate::sim::pressure::PoissonSolver::new(n, h).solve(&mut whole);
+            // One row per column from the axis out, each along the channel.
+            let mut half: Vec<f32> = (0..(c + 1) * n)
+                .map(|q| rhs[(q % n) * n + c - q / n])
+                .collect();
+            RingPoissonSolver::across(Across::MirroredPlane, c + 1, n, h).solve(&mut half);
+            let scale = whole.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+            let err = half.iter().enumerate().fold(0.0f32, |m, (q, x)| {
+                m.max((x - whole[(q % n) * n + c - q / n]).abs())
+            });
+            assert!(err < 1e-5 * scale, "n = {n}: {err} of {scale}");
         }
     }
 

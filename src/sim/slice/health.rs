@@ -31,6 +31,7 @@ impl SliceSim {
         self.speed = 0.0;
         let origin = Self::rest_origin(&self.species, &self.fluid);
         self.body = Body::new(&self.species, origin, self.fluid.h);
+        self.body.set_mirror_symmetric(self.mirror_symmetry);
         self.oral_arms = self.hanging_arms(&self.species);
         self.across += self.drift.x;
         self.frame.position += self.drift.y as f64;

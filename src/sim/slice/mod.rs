@@ -350,6 +350,7 @@ impl SliceSim {
     /// axisymmetric slice is a body of revolution and stays symmetric whatever is set.
     pub fn set_mirror_symmetry(&mut self, on: bool) {
         self.mirror_symmetry = on;
+        self.body.set_mirror_symmetric(on);
         self.fluid.mirror = on || self.fluid.rings().is_some();
     }
 
@@ -469,10 +470,12 @@ impl SliceSim {
             fresh.across = world.x;
             fresh.frame.position = world.y as f64;
             fresh.recoveries = self.recoveries;
+            fresh.set_mirror_symmetry(self.mirror_symmetry);
             *self = fresh;
             return Ok(());
         };
         rebuilt.points.clone_from(&self.body.points);
+        rebuilt.set_mirror_symmetric(self.mirror_symmetry);
         self.body = rebuilt;
         self.fluid.nu = species.kinematic_viscosity();
         self.fluid.rho = species.density;
