@@ -92,7 +92,9 @@ pub struct Fluid {
     bounds_u: Vec<(f32, f32)>,
     bounds_v: Vec<(f32, f32)>,
     phi: Vec<f32>,
-    poisson: PoissonSolver,
+    /// The whole grid's pressure solve: a planar slice free to tilt, or a closed test
+    /// box; built when first needed (a slice held symmetric never is).
+    poisson: Option<PoissonSolver>,
     /// The radii and pressure solve of an axisymmetric slice; `None` for a planar one.
     rings: Option<Box<Rings>>,
     /// A planar slice's mirrored half, solved while the slice is held mirror-symmetric in
@@ -143,7 +145,7 @@ impl Fluid {
             bounds_u: vec![(0.0, 0.0); faces],
             bounds_v: vec![(0.0, 0.0); faces],
             phi: vec![0.0; n * n],
-            poisson: PoissonSolver::new(n, h),
+            poisson: None,
             rings: None,
             plane_half: Some(Box::new(Rings::mirrored_plane(n, h))),
             spread_u: vec![1.0 / (h * h); n + 1],
@@ -158,6 +160,9 @@ impl Fluid {
         match geometry {
             SliceGeometry::Planar => {
                 self.rings = None;
+                if self.plane_half.is_none() {
+                    self.plane_half = Some(Box::new(Rings::mirrored_plane(n, h)));
+                }
                 self.phi = vec![0.0; n * n];
                 self.spread_u.fill(1.0 / (h * h));
                 self.spread_v.fill(1.0 / (h * h));
@@ -172,6 +177,7 @@ impl Fluid {
                 }
                 self.phi = vec![0.0; rings.solved * n];
                 self.rings = Some(Box::new(rings));
+                self.plane_half = None;
                 self.mirror = true;
             }
         }
@@ -199,7 +205,7 @@ impl Fluid {
         ];
         f32s.iter().map(|v| v.len() * 4).sum::<usize>()
             + (self.bounds_u.len() + self.bounds_v.len()) * 8
-            + self.poisson.bytes()
+            + self.poisson.as_ref().map_or(0, |p| p.bytes())
             + self.rings.as_ref().map_or(0, |r| r.bytes())
             + self.plane_half.as_ref().map_or(0, |r| r.bytes())
             + (self.spread_u.len() + self.spread_v.len()) * 4

@@ -2,6 +2,7 @@
 //! solved exactly (see `sim::pressure`), with the open wake end at zero pressure.
 
 use super::Fluid;
+use crate::sim::pressure::PoissonSolver;
 
 impl Fluid {
     /// Removes the divergent part of the velocity with an exact Poisson solve.
@@ -20,7 +21,9 @@ impl Fluid {
                 *p = ((u[i + 1] - u[i]) + (v1[i] - v0[i])) / h;
             }
         }
-        self.poisson.solve(&mut self.phi);
+        self.poisson
+            .get_or_insert_with(|| PoissonSolver::new(n, h))
+            .solve(&mut self.phi);
         for j in 0..n {
             let phi = &self.phi[j * n..][..n];
             let u = &mut self.u[j * (n + 1)..][..n + 1];

@@ -45,14 +45,14 @@ impl Fluid {
     pub(crate) fn set_walls(&mut self, walls: Walls) {
         self.walls = walls;
         let (n, h) = (self.n, self.h);
-        self.poisson = if walls.is_closed() {
+        self.poisson = Some(if walls.is_closed() {
             self.stream = 0.0;
             self.sponge_u.fill(0.0);
             self.sponge_v.fill(0.0);
             PoissonSolver::closed(n, h)
         } else {
             PoissonSolver::new(n, h)
-        };
+        });
         self.enforce_walls();
     }
 
