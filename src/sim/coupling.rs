@@ -31,10 +31,10 @@ struct Mirrored {
 
 impl Coupling {
     /// Finds the stencils of `points` on `fluid`'s grid. `partners[i]`, where given, is the
-    /// point `i` is the mirror image of: an axisymmetric slice's water is mirrored about
-    /// its axis, so such a point reads its partner's velocity mirrored and spreads through
-    /// its partner's stencils mirrored; only where those reach the solved half (the rings
-    /// near the axis), since the projection overwrites the rest (`docs/numerics.md`).
+    /// point `i` is the mirror image of: a mirror-symmetric slice's water is mirrored
+    /// about its axis, so such a point reads its partner's velocity mirrored and spreads
+    /// through its partner's stencils mirrored; only where those reach the solved half
+    /// (near the axis), since the projection overwrites the rest (`docs/numerics.md`).
     pub(crate) fn locate(&mut self, fluid: &Fluid, points: &[Vec2], partners: &[Option<usize>]) {
         // In place: a stencil built and then moved was read back before its own stores
         // had landed (a store-forwarding stall per copy).

@@ -133,8 +133,8 @@ enum Mirror {
     /// All of them: the next steps read the whole field.
     Whole,
     /// Only the column just past the axis: a slice solved on its half (see
-    /// [`Fluid::half`]) reads no further before its projection mirrors the rest (the same bits
-    /// as [`Mirror::Whole`], a pass over half the field fewer).
+    /// [`Fluid::half`]) reads no further before its projection mirrors the rest (the
+    /// same bits as [`Mirror::Whole`], a pass over half the field fewer).
     PastAxis,
 }
 

@@ -68,10 +68,11 @@ impl Fluid {
         s
     }
 
-    /// Whether a point of an axisymmetric slice lies so far past the axis that no face
-    /// of its stencils is in the solved half: what it spreads there is dropped (the
-    /// projection mirrors the solved half over it), and what it reads is the mirror image
-    /// of what its partner before the axis reads. Always false in the plane.
+    /// Whether a point of a slice solved on its half ([`Fluid::half`]) lies so far past
+    /// the axis that no face of its stencils is in the solved half: what it spreads there
+    /// is dropped (the projection mirrors the solved half over it), and what it reads is
+    /// the mirror image of what its partner before the axis reads. Always false for a
+    /// planar slice free to tilt.
     pub(crate) fn beyond_the_solved_half(&self, p: Vec2) -> bool {
         let Some(solved) = self.half().map(|r| r.solved) else {
             return false;

@@ -17,7 +17,8 @@
 //! - `boundaries`: the side walls, the inflow, the open wake end and its absorbing layer;
 //! - `frame`: the co-moving box (Galilean changes of frame, whole-cell shifts);
 //! - `symmetry`: the mirror about the bell's axis;
-//! - `rings`: the axisymmetric slice's r-weighted operators (see [`SliceGeometry`]);
+//! - `rings`: the axisymmetric slice's r-weighted operators (see [`SliceGeometry`]), and
+//!   the same passes with unit weights on a planar slice's mirrored half;
 //! - `measure`: divergence, speeds, energy;
 //! - `walls`: the channel, or a closed box for the textbook flows (`textbook`) that
 //!   check the fluid on its own.

@@ -91,8 +91,9 @@ impl Rings {
 
     /// The half of a planar slice held mirror-symmetric about the centre of column `n/2`:
     /// every weight 1, so the same passes are the plane's operators. On an even grid the
-    /// mirrored half is a box one cell wider than the grid: its wall's image lies past the
-    /// last column, which is never read back.
+    /// mirrored half is a box one cell wider than the grid: the image of its wall lies a
+    /// column past the grid's (whose faces just inside it hold the mirror images all the
+    /// same; nothing the step reads lies there).
     pub(crate) fn mirrored_plane(n: usize, h: f32) -> Self {
         let c = n / 2;
         Self {

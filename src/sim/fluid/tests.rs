@@ -66,9 +66,9 @@ fn projection_is_idempotent() {
 
 /// A planar slice held mirror-symmetric is solved on its half (the force of the points
 /// past the axis spread through their partners, viscosity and pressure on the half, the
-/// rest mirrored): on an odd grid, whose box is its own
-/// mirror image, that is the whole field's step symmetrised, to round-off; on an even one
-/// the half is divergence-free and the field its mirror image.
+/// rest mirrored): on an odd grid, whose box is its own mirror image, that is the whole
+/// field's step symmetrised, to round-off; on an even one the half is divergence-free and
+/// the field its mirror image.
 #[test]
 fn a_planar_slice_held_symmetric_is_solved_on_its_half() {
     for n in [41, 40] {
