@@ -27,7 +27,7 @@
 //! a mirror.
 
 use super::Fluid;
-use super::symmetry::mirror;
+use super::symmetry::{mirror_u_row, mirror_v_row};
 use crate::sim::pressure::{Across, RingPoissonSolver};
 
 /// The radii of an axisymmetric slice's faces and cells, and its pressure solve (every
@@ -209,8 +209,12 @@ impl Fluid {
                     *v -= (p - q) * inverse_h;
                 }
             }
+            // Mirrored while the rows are at hand (what `symmetry::mirror` would write).
+            mirror_u_row(&mut self.u[j * (n + 1)..][..n + 1]);
+            mirror_v_row(&mut self.v[j * n..][..n]);
         }
-        mirror(&mut self.u, &mut self.v, None, None, n);
+        // The inflow's row, which the projection leaves as it is.
+        mirror_v_row(&mut self.v[n * n..][..n]);
     }
 
     /// One explicit sweep of the r–z viscous operator, `a = ν·dt/h²`, on the solved half:

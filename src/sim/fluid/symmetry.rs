@@ -67,21 +67,9 @@ pub(super) fn mirror(
     n: usize,
 ) {
     let c = n / 2;
-    // Each row split at the axis, the part past it written from the traced part read
-    // backwards (face m from face 2c + 1 − m for u, column m from 2c − m for v).
+    u.chunks_exact_mut(n + 1).for_each(mirror_u_row);
+    v.chunks_exact_mut(n).for_each(mirror_v_row);
     let faces = n - 1 - c;
-    for row in u.chunks_exact_mut(n + 1) {
-        let (traced, past) = row.split_at_mut(c + 1);
-        for (m, t) in past[..faces].iter_mut().zip(traced.iter().rev()) {
-            *m = -*t;
-        }
-    }
-    for row in v.chunks_exact_mut(n) {
-        let (traced, past) = row.split_at_mut(c + 1);
-        for (m, t) in past.iter_mut().zip(traced[..c].iter().rev()) {
-            *m = *t;
-        }
-    }
     if let Some(bounds) = bounds_u {
         for row in bounds.chunks_exact_mut(n + 1) {
             let (traced, past) = row.split_at_mut(c + 1);
@@ -97,6 +85,28 @@ pub(super) fn mirror(
                 *m = *t;
             }
         }
+    }
+}
+
+/// One row of `u` faces (`n + 1` of them) past the axis written from the row before it
+/// read backwards, as [`mirror`] fills them: face m from face 2c + 1 − m, reversed.
+pub(super) fn mirror_u_row(row: &mut [f32]) {
+    let n = row.len() - 1;
+    let c = n / 2;
+    let (traced, past) = row.split_at_mut(c + 1);
+    for (m, t) in past[..n - 1 - c].iter_mut().zip(traced.iter().rev()) {
+        *m = -*t;
+    }
+}
+
+/// One row of `v` faces (`n` of them) past the axis written from the row before it read
+/// backwards, as [`mirror`] fills them: column m from column 2c − m.
+pub(super) fn mirror_v_row(row: &mut [f32]) {
+    let n = row.len();
+    let c = n / 2;
+    let (traced, past) = row.split_at_mut(c + 1);
+    for (m, t) in past.iter_mut().zip(traced[..c].iter().rev()) {
+        *m = *t;
     }
 }
 
