@@ -151,6 +151,10 @@ pub(crate) struct RingPoissonSolver {
     factors: Arc<Factors>,
     modes: Vec<f64>,
     scratch: Scratch,
+    /// Every ring's half-length transform at once (`rings × n/2`, ring by ring): an even
+    /// length's whole batch goes through the FFT in one call, and its twiddles run along
+    /// the rows the projection holds, not down their columns.
+    batch: Vec<Complex<f32>>,
 }
 
 /// Coefficients of the radial operator for `rings` cells of size `h`, `(lower, diagonal,
@@ -207,8 +211,10 @@ fn factors(across: Across, rings: usize, n: usize, h: f32) -> Arc<Factors> {
         (across, rings, n, h.to_bits()),
         || {
             let (pi, h) = (std::f64::consts::PI, h as f64);
+            // Each system in the order the transform leaves its modes (`mode_at`).
             let lambda: Vec<f64> = (0..n)
-                .map(|m| (2.0 * (pi * (m as f64 + 0.5) / n as f64).cos() - 2.0) / (h * h))
+                .map(|p| mode_at(n, p) as f64)
+                .map(|m| (2.0 * (pi * (m + 0.5) / n as f64).cos() - 2.0) / (h * h))
                 .collect();
             // Eliminated from the outer wall in to the axis: the fluid's column order.
             let (lower, mut diagonal, upper) = match across {
@@ -239,18 +245,25 @@ impl RingPoissonSolver {
     pub(crate) fn across(across: Across, columns: usize, n: usize, h: f32) -> Self {
         let along = Along::plan(n);
         let scratch = along.scratch();
+        let batch = match along {
+            Along::Even { .. } => vec![Complex::default(); columns * (n / 2)],
+            Along::Odd(_) => Vec::new(),
+        };
         Self {
             n,
             along,
             factors: factors(across, columns, n, h),
             modes: vec![0.0; columns * n],
             scratch,
+            batch,
         }
     }
 
     /// Heap bytes of this solver's own (unshared) buffers.
     pub(crate) fn bytes(&self) -> usize {
-        self.modes.len() * 8 + self.scratch.complex.len() * 8 + self.scratch.real.len() * 4
+        self.modes.len() * 8
+            + (self.scratch.complex.len() + self.batch.len()) * 8
+            + self.scratch.real.len() * 4
     }
 
     /// Solves the r-weighted `∇²φ = rhs` in place; `field` holds one row per ring (the
@@ -277,15 +290,20 @@ impl RingPoissonSolver {
     pub(crate) fn solve_reversed(&mut self, field: &mut [f32]) {
         let n = self.n;
         debug_assert_eq!(field.len(), self.modes.len());
+        let mut natural = vec![0.0; n];
         for row in field.chunks_exact_mut(n) {
             self.along.transform(row, &mut self.scratch);
+            natural.copy_from_slice(row);
+            for (p, x) in row.iter_mut().enumerate() {
+                *x = natural[mode_at(n, p)];
+            }
         }
         // DST-IV is its own inverse up to n/2: undone on the way in.
         self.factors.solve(field, 2.0 / n as f64, &mut self.modes);
-        for (x, m) in field.iter_mut().zip(&self.modes) {
-            *x = *m as f32;
-        }
-        for row in field.chunks_exact_mut(n) {
+        for (row, modes) in field.chunks_exact_mut(n).zip(self.modes.chunks_exact(n)) {
+            for (p, m) in modes.iter().enumerate() {
+                row[mode_at(n, p)] = *m as f32;
+            }
             self.along.transform(row, &mut self.scratch);
         }
     }
@@ -293,24 +311,102 @@ impl RingPoissonSolver {
     /// [`Self::solve_reversed`] of a field held the other way round, as the projection
     /// builds it: `across` has one row per cell along the axis, each a value per ring in
     /// the fluid's order (the outer wall first). Each ring's column is transformed
-    /// straight into its row of `work` (`rings × n`) and back, so the field is never
-    /// turned: the same arithmetic, the same bits.
+    /// straight into its row of `work` (`rings × n`, its modes in [`mode_at`]'s order)
+    /// and back, so the field is never turned: the same arithmetic, the same bits. An
+    /// even length's twiddles run along the rows of `across`, every ring at once, and
+    /// its FFTs go through in one batch.
     pub(crate) fn solve_across(&mut self, across: &mut [f32], work: &mut [f32]) {
         let n = self.n;
         let rings = across.len() / n;
         debug_assert_eq!(work.len(), self.modes.len());
+        let Along::Even { fft, before, after } = &self.along else {
+            return self.solve_across_one_by_one(across, work);
+        };
+        let half = n / 2;
+        let scratch = &mut self.scratch.complex[half..];
+        // In: the twiddles before the FFT along each pair of rows of `across` (every ring
+        // at once), each ring's values into its row of the batch.
+        for (j, w) in before.iter().enumerate() {
+            let reversed = &across[(n - 1 - 2 * j) * rings..][..rings];
+            let even = &across[2 * j * rings..][..rings];
+            for (k, (a, b)) in reversed.iter().zip(even).enumerate() {
+                self.batch[k * half + j] = Complex::new(*a, *b) * w;
+            }
+        }
+        fft.process_with_scratch(&mut self.batch, scratch);
+        // Modes n − 1 − 2j and 2j side by side (`mode_at`).
+        for (row, ring) in work.chunks_exact_mut(n).zip(self.batch.chunks_exact(half)) {
+            for (pair, (b, w)) in row.chunks_exact_mut(2).zip(ring.iter().zip(after.iter())) {
+                let u = b * w;
+                pair[0] = u.im;
+                pair[1] = u.re;
+            }
+        }
+        // DST-IV is its own inverse up to n/2: undone on the way in.
+        self.factors.solve(work, 2.0 / n as f64, &mut self.modes);
+        // Out: each ring's modes through the FFT, then the twiddles after it along the
+        // rows of `across`.
+        for (ring, modes) in self
+            .batch
+            .chunks_exact_mut(half)
+            .zip(self.modes.chunks_exact(n))
+        {
+            for (b, (pair, w)) in ring
+                .iter_mut()
+                .zip(modes.chunks_exact(2).zip(before.iter()))
+            {
+                *b = Complex::new(pair[0] as f32, pair[1] as f32) * w;
+            }
+        }
+        fft.process_with_scratch(&mut self.batch, scratch);
+        for (j, w) in after.iter().enumerate() {
+            let (even, reversed) = two_rows(across, rings, 2 * j, n - 1 - 2 * j);
+            for (k, (re, im)) in even.iter_mut().zip(reversed).enumerate() {
+                let u = self.batch[k * half + j] * w;
+                *re = u.re;
+                *im = u.im;
+            }
+        }
+    }
+
+    /// [`Self::solve_across`] one ring's column at a time (odd lengths).
+    fn solve_across_one_by_one(&mut self, across: &mut [f32], work: &mut [f32]) {
+        let n = self.n;
+        let rings = across.len() / n;
         for (k, row) in work.chunks_exact_mut(n).enumerate() {
             self.along
                 .load(n, &mut self.scratch, |j| across[j * rings + k]);
             self.along.store(n, &self.scratch, |j, x| row[j] = x);
         }
-        // DST-IV is its own inverse up to n/2: undone on the way in.
         self.factors.solve(work, 2.0 / n as f64, &mut self.modes);
         for (k, modes) in self.modes.chunks_exact(n).enumerate() {
             self.along.load(n, &mut self.scratch, |j| modes[j] as f32);
             self.along
                 .store(n, &self.scratch, |j, x| across[j * rings + k] = x);
         }
+    }
+}
+
+/// Which mode of the transform along the axis the solve holds at position `p` of a row of
+/// `n`: the even-length transform leaves modes `n − 1 − 2j` and `2j` as the two halves of
+/// its `j`-th complex output, so they are kept side by side (the elimination is the same
+/// for any order of the modes); an odd length's in order.
+fn mode_at(n: usize, p: usize) -> usize {
+    match (n % 2, p % 2) {
+        (1, _) => p,
+        (_, 0) => n - 1 - p,
+        _ => p - 1,
+    }
+}
+
+/// Rows `a` and `b` (different, either order) of rows `len` long.
+fn two_rows(field: &mut [f32], len: usize, a: usize, b: usize) -> (&mut [f32], &mut [f32]) {
+    if a < b {
+        let (low, high) = field.split_at_mut(b * len);
+        (&mut low[a * len..][..len], &mut high[..len])
+    } else {
+        let (low, high) = field.split_at_mut(a * len);
+        (&mut high[..len], &mut low[b * len..][..len])
     }
 }
 
