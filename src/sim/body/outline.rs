@@ -111,18 +111,18 @@ fn crosses_itself_pairwise(points: &[Vec2]) -> bool {
 
 /// Whether `p` lies inside the closed polygon through `points` (even–odd rule).
 pub fn contains(points: &[Vec2], p: Vec2) -> bool {
-    let n = points.len();
-    let mut inside = false;
-    for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
+    let crosses = |a: Vec2, b: Vec2| {
+        (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)
+    };
+    // Each edge from a point to the next, the closing one last (no index wrapped by a
+    // division per edge: this runs for every tentacle point, every step).
+    let closing = match points {
+        [first, .., last] => crosses(*last, *first),
+        _ => false,
+    };
+    points
+        .windows(2)
+        .fold(closing, |inside, w| inside != crosses(w[0], w[1]))
 }
 
 /// Unit normals of a left-to-right slice curve, turned away from the bell cavity (+y at an
@@ -250,5 +250,40 @@ mod tests {
         // Flattened to a sliver.
         let flat: Vec<Vec2> = dome().iter().map(|p| Vec2::new(p.x, 0.1 * p.y)).collect();
         assert!(Outline::of(&flat, rest).crumpled());
+    }
+    /// The even–odd rule on a bell's slice: a U open at the bottom (the subumbrella's
+    /// cavity is outside the mesoglea's band), closed by its last edge back to the first;
+    /// points in the band, in the cavity, below and beside it, and the degenerate
+    /// polygons.
+    #[test]
+    fn a_point_is_inside_the_band_not_the_cavity() {
+        // Exumbrella from the left margin over the apex to the right margin, then the
+        // subumbrella back under it: a band 0.2 thick.
+        let mut bell: Vec<Vec2> = (0..=16)
+            .map(|k| {
+                let a = std::f32::consts::PI * k as f32 / 16.0;
+                Vec2::new(-a.cos(), a.sin())
+            })
+            .collect();
+        bell.extend((0..=16).rev().map(|k| {
+            let a = std::f32::consts::PI * k as f32 / 16.0;
+            Vec2::new(-0.8 * a.cos(), 0.8 * a.sin())
+        }));
+        for (p, inside) in [
+            (Vec2::new(0.0, 0.9), true),
+            (Vec2::new(-0.65, 0.65), true),
+            (Vec2::new(0.0, 0.5), false),
+            (Vec2::new(0.0, -0.3), false),
+            (Vec2::new(1.5, 0.2), false),
+            (Vec2::new(0.0, 1.2), false),
+        ] {
+            assert_eq!(contains(&bell, p), inside, "{p}");
+            // The same polygon from another first point.
+            bell.rotate_left(5);
+            assert_eq!(contains(&bell, p), inside, "{p}, rotated");
+        }
+        assert!(!contains(&[], Vec2::ZERO));
+        assert!(!contains(&[Vec2::ZERO], Vec2::ZERO));
+        assert!(!contains(&[Vec2::ZERO, Vec2::ONE], Vec2::splat(0.5)));
     }
 }

@@ -160,11 +160,18 @@ impl Body {
     /// chord). Tentacles hang from the margin and cannot pass through the mesoglea.
     pub(crate) fn keep_tentacles_outside(&mut self) {
         let n = self.bell.len();
+        // No point above the bell's highest nor below its lowest can be inside it (no
+        // edge spans its height): most of a trailing fringe, tested without its edges.
+        let (low, high) = self.points[self.bell.clone()]
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(lo, hi), q| {
+                (lo.min(q.y), hi.max(q.y))
+            });
         for range in self.tentacles.clone() {
             for i in range {
                 let p = self.points[i];
                 let bell = &self.points[self.bell.clone()];
-                if !contains(bell, p) {
+                if p.y < low || p.y >= high || !contains(bell, p) {
                     continue;
                 }
                 let mut best = (f32::MAX, p);
