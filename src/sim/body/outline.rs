@@ -251,6 +251,7 @@ mod tests {
         let flat: Vec<Vec2> = dome().iter().map(|p| Vec2::new(p.x, 0.1 * p.y)).collect();
         assert!(Outline::of(&flat, rest).crumpled());
     }
+
     /// The even–odd rule on a bell's slice: a U open at the bottom (the subumbrella's
     /// cavity is outside the mesoglea's band), closed by its last edge back to the first;
     /// points in the band, in the cavity, below and beside it, and the degenerate
