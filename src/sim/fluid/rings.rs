@@ -165,8 +165,16 @@ impl Fluid {
     }
 
     /// The projection of a mirror-symmetric slice: the (r-weighted) divergence of the
-    /// solved half, the exact solve, its gradient subtracted, the half mirrored.
+    /// solved half, the exact solve, its gradient subtracted, the half mirrored. Its
+    /// loops run eight wide where the processor has AVX.
     pub(super) fn project_half(&mut self, rings: &mut Rings) {
+        let fluid = self;
+        eight_wide!(Fluid::project_half_passes, (fluid: &mut Fluid, rings: &mut Rings))
+    }
+
+    /// [`Self::project_half`]'s passes, inlined into each of its callers' codegen.
+    #[inline(always)]
+    fn project_half_passes(&mut self, rings: &mut Rings) {
         let (n, c) = (self.n, rings.solved - 1);
         let inverse_h = 1.0 / self.h;
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
@@ -221,8 +229,19 @@ impl Fluid {
     /// `u` by the radial gradient of its r-weighted divergence (the hoop term included),
     /// `v` by the r-weighted Laplacian; free slip at the outer wall, zero gradient at the
     /// open ends, as in the plane. Only the faces just past the axis are mirrored after
-    /// it (the next sweep reads them); the projection mirrors the rest.
+    /// it (the next sweep reads them); the projection mirrors the rest. Eight wide where
+    /// the processor has AVX.
     pub(super) fn ring_viscosity_sweep(&mut self, rings: &mut Rings, a: f32) {
+        let fluid = self;
+        eight_wide!(
+            Fluid::ring_viscosity_passes,
+            (fluid: &mut Fluid, rings: &mut Rings, a: f32)
+        )
+    }
+
+    /// [`Self::ring_viscosity_sweep`]'s passes, inlined into each of its callers' codegen.
+    #[inline(always)]
+    fn ring_viscosity_passes(&mut self, rings: &mut Rings, a: f32) {
         let (n, c) = (self.n, rings.solved - 1);
         let (r, inverse) = (&rings.face[..c + 2], &rings.inverse_cell[..c + 1]);
         // Each loop over slices of one length, without a branch, an index check or a

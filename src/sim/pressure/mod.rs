@@ -60,6 +60,16 @@ impl Factors {
     /// Solves every mode's system for `rhs · norm` (row-major, modes contiguous) into
     /// `out`.
     pub(super) fn solve(&self, rhs: &[f32], norm: f64, out: &mut [f64]) {
+        let factors = self;
+        eight_wide!(
+            Factors::eliminate,
+            (factors: &Factors, rhs: &[f32], norm: f64, out: &mut [f64])
+        )
+    }
+
+    /// [`Self::solve`]'s elimination, inlined into each of its callers' codegen.
+    #[inline(always)]
+    fn eliminate(&self, rhs: &[f32], norm: f64, out: &mut [f64]) {
         let m = self.modes;
         let rows = out.len() / m;
         // Forward elimination, all modes of a row at once.

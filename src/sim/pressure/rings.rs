@@ -316,6 +316,16 @@ impl RingPoissonSolver {
     /// even length's twiddles run along the rows of `across`, every ring at once, and
     /// its FFTs go through in one batch.
     pub(crate) fn solve_across(&mut self, across: &mut [f32], work: &mut [f32]) {
+        let solver = self;
+        eight_wide!(
+            RingPoissonSolver::solve_across_passes,
+            (solver: &mut RingPoissonSolver, across: &mut [f32], work: &mut [f32])
+        )
+    }
+
+    /// [`Self::solve_across`]'s passes, inlined into each of its callers' codegen.
+    #[inline(always)]
+    fn solve_across_passes(&mut self, across: &mut [f32], work: &mut [f32]) {
         let n = self.n;
         let rings = across.len() / n;
         debug_assert_eq!(work.len(), self.modes.len());
