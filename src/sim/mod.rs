@@ -3,16 +3,17 @@
 //! The physical model, its units and the published figures it is checked against are in
 //! `docs/physics.md`; the numerical choices and what they measured in `docs/numerics.md`.
 
-/// Calls `$passes($args…)` compiled for AVX where the processor has it, else as built:
-/// the passes' loops then run eight lanes wide with the same operations in the same order
-/// (no FMA), so the same bits. `$passes` must be `#[inline(always)]`, so that it is
-/// compiled into each caller. Returns from the enclosing function on the AVX path.
+/// Calls `$passes($args…)` (returning nothing) compiled for AVX where the processor has
+/// it, else as built: the passes' loops then run eight lanes wide with the same
+/// operations in the same order (no FMA), so the same bits. `$passes` must be
+/// `#[inline(always)]`, so that it is compiled into each caller. Returns from the
+/// enclosing function on the AVX path.
 macro_rules! eight_wide {
-    ($passes:path, ($($arg:ident: $ty:ty),*) $(-> $ret:ty)?) => {{
+    ($passes:path, ($($arg:ident: $ty:ty),*)) => {{
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx") {
             #[target_feature(enable = "avx")]
-            fn avx($($arg: $ty),*) $(-> $ret)? {
+            fn avx($($arg: $ty),*) {
                 $passes($($arg),*)
             }
             // SAFETY: this processor has AVX (asked above).
