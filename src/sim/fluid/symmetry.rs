@@ -66,24 +66,16 @@ pub(super) fn mirror(
     bounds_v: Option<&mut Vec<(f32, f32)>>,
     n: usize,
 ) {
-    let c = n / 2;
     u.chunks_exact_mut(n + 1).for_each(mirror_u_row);
     v.chunks_exact_mut(n).for_each(mirror_v_row);
-    let faces = n - 1 - c;
     if let Some(bounds) = bounds_u {
         for row in bounds.chunks_exact_mut(n + 1) {
-            let (traced, past) = row.split_at_mut(c + 1);
-            for (m, &(lo, hi)) in past[..faces].iter_mut().zip(traced.iter().rev()) {
-                *m = (-hi, -lo);
-            }
+            mirror_u_row_as(row, |(lo, hi)| (-hi, -lo));
         }
     }
     if let Some(bounds) = bounds_v {
         for row in bounds.chunks_exact_mut(n) {
-            let (traced, past) = row.split_at_mut(c + 1);
-            for (m, t) in past.iter_mut().zip(traced[..c].iter().rev()) {
-                *m = *t;
-            }
+            mirror_v_row_as(row, |t| t);
         }
     }
 }
@@ -91,25 +83,35 @@ pub(super) fn mirror(
 /// One row of `u` faces (`n + 1` of them) past the axis written from the row before it
 /// read backwards, as [`mirror`] fills them: face m from face 2c + 1 − m, reversed.
 pub(super) fn mirror_u_row(row: &mut [f32]) {
-    let n = row.len() - 1;
-    let c = n / 2;
-    let (traced, past) = row.split_at_mut(c + 1);
-    reverse_into(&mut past[..n - 1 - c], traced, |t| -t);
+    mirror_u_row_as(row, |t| -t);
 }
 
 /// One row of `v` faces (`n` of them) past the axis written from the row before it read
 /// backwards, as [`mirror`] fills them: column m from column 2c − m.
 pub(super) fn mirror_v_row(row: &mut [f32]) {
+    mirror_v_row_as(row, |t| t);
+}
+
+/// [`mirror_u_row`] of anything a `u` face carries, each value's mirror image `image`.
+fn mirror_u_row_as<T: Copy>(row: &mut [T], image: impl Fn(T) -> T) {
+    let n = row.len() - 1;
+    let c = n / 2;
+    let (traced, past) = row.split_at_mut(c + 1);
+    reverse_into(&mut past[..n - 1 - c], traced, image);
+}
+
+/// [`mirror_v_row`] of anything a `v` face carries.
+fn mirror_v_row_as<T: Copy>(row: &mut [T], image: impl Fn(T) -> T) {
     let n = row.len();
     let c = n / 2;
     let (traced, past) = row.split_at_mut(c + 1);
-    reverse_into(past, &traced[..c], |t| t);
+    reverse_into(past, &traced[..c], image);
 }
 
 /// `out[m] = image(from[from.len() − 1 − m])` for each `m` of `out` (no longer than
 /// `from`): four at a time, each four read as one block and turned, so that it
 /// vectorises (a reversed iterator stepped one value at a time did not).
-fn reverse_into(out: &mut [f32], from: &[f32], image: impl Fn(f32) -> f32) {
+fn reverse_into<T: Copy>(out: &mut [T], from: &[T], image: impl Fn(T) -> T) {
     let from = &from[from.len() - out.len()..];
     let mut quads = out.chunks_exact_mut(4);
     let mut sources = from.rchunks_exact(4);
