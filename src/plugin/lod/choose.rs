@@ -62,31 +62,62 @@ pub(super) fn screen_sizes<'a>(
 }
 
 /// The tier each jellyfish should have: the `near` largest (with hysteresis) of at least
-/// `near_size`, then the `mid` largest of the rest, then far.
+/// `near_size`, then the `mid` largest of the rest, then far. Near and mid come largest
+/// first; of the far, those not far now (the changes) come as the mid tier's claims rank
+/// them, the rest in no order.
+///
+/// Only each tier's budget is put in order, after a selection, and the far changes: ten
+/// thousand jellyfish sorted twice a frame were a serial millisecond.
 pub(super) fn choose(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
     let boost = 1.0 + levels.hysteresis.max(0.0);
+    let claim = |r: &Rank, tier: Tier| {
+        if r.tier <= tier {
+            r.size * boost
+        } else {
+            r.size
+        }
+    };
+    let order = |tier: Tier| {
+        move |a: &Rank, b: &Rank| {
+            claim(b, tier)
+                .total_cmp(&claim(a, tier))
+                .then(a.entity.cmp(&b.entity))
+        }
+    };
     let mut chosen = Vec::with_capacity(ranks.len());
     for (tier, budget, least) in [
         (Tier::Near, levels.near, levels.near_size),
         (Tier::Mid, levels.mid, levels.mid_size),
     ] {
-        let claim = |r: &Rank| {
-            if r.tier <= tier {
-                r.size * boost
-            } else {
-                r.size
-            }
-        };
-        ranks.sort_by(|a, b| claim(b).total_cmp(&claim(a)).then(a.entity.cmp(&b.entity)));
+        if budget < ranks.len() {
+            ranks.select_nth_unstable_by(budget, order(tier));
+            ranks[..budget].sort_by(order(tier));
+        } else {
+            ranks.sort_by(order(tier));
+        }
         let taken = ranks
             .iter()
             .take(budget)
-            .take_while(|r| claim(r) >= least)
+            .take_while(|r| claim(r, tier) >= least)
             .count();
         chosen.extend(ranks.drain(..taken).map(|r| (r.entity, tier)));
     }
+    let moved = to_front(&mut ranks, |r| r.tier != Tier::Far);
+    ranks[..moved].sort_by(order(Tier::Mid));
     chosen.extend(ranks.into_iter().map(|r| (r.entity, Tier::Far)));
     chosen
+}
+
+/// Moves the ranks `first` holds for to the front (their order kept); returns how many.
+fn to_front(ranks: &mut [Rank], first: impl Fn(&Rank) -> bool) -> usize {
+    let mut n = 0;
+    for i in 0..ranks.len() {
+        if first(&ranks[i]) {
+            ranks.swap(n, i);
+            n += 1;
+        }
+    }
+    n
 }
 
 #[cfg(test)]
@@ -184,6 +215,85 @@ mod tests {
         a.sort();
         b.sort();
         assert_eq!(a, b);
+    }
+
+    /// The tiers as sorting every rank for each tier chose them: the same tier for each,
+    /// and the changes (those whose tier is not what they hold) in the same order, which
+    /// decides the promotions a frame allows.
+    #[test]
+    fn the_tiers_and_their_changes_are_what_sorting_all_chose() {
+        fn sorted_all(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
+            let boost = 1.0 + levels.hysteresis.max(0.0);
+            let mut chosen = Vec::new();
+            for (tier, budget, least) in [
+                (Tier::Near, levels.near, levels.near_size),
+                (Tier::Mid, levels.mid, levels.mid_size),
+            ] {
+                let claim = |r: &Rank| {
+                    if r.tier <= tier {
+                        r.size * boost
+                    } else {
+                        r.size
+                    }
+                };
+                ranks.sort_by(|a, b| claim(b).total_cmp(&claim(a)).then(a.entity.cmp(&b.entity)));
+                let taken = ranks
+                    .iter()
+                    .take(budget)
+                    .take_while(|r| claim(r) >= least)
+                    .count();
+                chosen.extend(ranks.drain(..taken).map(|r| (r.entity, tier)));
+            }
+            chosen.extend(ranks.into_iter().map(|r| (r.entity, Tier::Far)));
+            chosen
+        }
+        let tiers = [Tier::Near, Tier::Mid, Tier::Far];
+        for (count, near, mid) in [
+            (0, 3, 2),
+            (5, 10, 10),
+            (40, 3, 5),
+            (300, 20, 7),
+            (300, 0, 0),
+        ] {
+            // Sizes with ties, tiers held at random.
+            let input: Vec<(u32, f32, Tier)> = (0..count)
+                .map(|i| {
+                    let size = ((i * 7919 % 97) / 3) as f32 * 0.01;
+                    (i * 31 % 1009, size, tiers[(i * 13 % 7 % 3) as usize])
+                })
+                .collect();
+            let levels = DetailLevels {
+                near,
+                mid,
+                near_size: 0.05,
+                mid_size: 0.02,
+                hysteresis: 0.25,
+                ..default()
+            };
+            let (a, b) = (
+                choose(ranks(&input), &levels),
+                sorted_all(ranks(&input), &levels),
+            );
+            let held = |e: Entity| {
+                input
+                    .iter()
+                    .find(|r| Entity::from_raw_u32(r.0).unwrap() == e)
+                    .unwrap()
+                    .2
+            };
+            let changes = |c: &[(Entity, Tier)]| -> Vec<(Entity, Tier)> {
+                c.iter().copied().filter(|(e, t)| held(*e) != *t).collect()
+            };
+            assert_eq!(
+                changes(&a),
+                changes(&b),
+                "{count} ranks, budgets {near}, {mid}"
+            );
+            let (mut a, mut b) = (a, b);
+            a.sort();
+            b.sort();
+            assert_eq!(a, b);
+        }
     }
 
     #[test]
