@@ -105,14 +105,24 @@ fn shape_one(
     let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, trails);
     let (seed, time) = (slice.seed, shown.time as f32);
     let step = step.and_then(|s| s.recorded.as_ref());
+    // The cycle it drew from last frame, if still the one: `None` keeps it held.
     let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
+        if let Some((held, _)) = shared.as_ref()
+            && held.plays(cache, &slice.species, res)
+        {
+            return held.start(*index).map(|_| (None, *index));
+        }
         let cycle = recorded.cycle(cache, &slice.species, res)?;
-        cycle.start(*index).map(|_| (cycle, *index))
+        cycle.start(*index).map(|_| (Some(cycle), *index))
     });
-    let built = if let Some(step) = recorded_step {
+    let built = if let Some((cycle, index)) = recorded_step {
         block.clear();
         packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
-        *shared = Some(step);
+        match (cycle, shared.as_mut()) {
+            (Some(cycle), _) => *shared = Some((cycle, index)),
+            (None, Some(held)) => held.1 = index,
+            (None, None) => {}
+        }
         Ok(())
     } else if templates {
         let mut packed = std::mem::take(block);

@@ -31,6 +31,7 @@ pub(crate) struct PackedCycle {
     /// this entry lives; gone when no jellyfish plays it.
     cache: Weak<CycleCache>,
     species: Arc<Species>,
+    res: Resolution,
     /// Every step's frame, one after another.
     pub(crate) frames: Vec<f32>,
     /// Where each step's frame starts in `frames`.
@@ -93,9 +94,26 @@ impl PackedCycle {
         Some(Self {
             cache: Arc::downgrade(cache),
             species: species.clone(),
+            res,
             frames,
             starts,
         })
+    }
+
+    /// Whether this is what [`RecordedFrames::cycle`] gives for `cache`, `species` and
+    /// `res`: a far jellyfish that drew from it last frame takes it again without the
+    /// lock and the reference count that every far jellyfish of the species shares (two
+    /// threads contending for their cache line each frame, ten thousand times). Held, it
+    /// is still the map's entry: `prune` drops only what no jellyfish holds.
+    pub(crate) fn plays(
+        &self,
+        cache: &Arc<CycleCache>,
+        species: &Arc<Species>,
+        res: Resolution,
+    ) -> bool {
+        std::ptr::eq(self.cache.as_ptr(), Arc::as_ptr(cache))
+            && self.res == res
+            && same(&self.species, species)
     }
 
     /// Where step `index`'s frame starts in [`Self::frames`].
