@@ -182,26 +182,27 @@ pub const MAX_MESH_VERTICES: usize = 50_000;
 /// at its budget, 60 frames then still take under the 2 s the limits promise.
 pub const MAX_COST_PER_SECOND: f64 = 0.5;
 
-/// Cost of one step on the reference machine: per fluid cell, per cell and diffusion
-/// sweep, and per body point. First measured on the iterative fluid (grid 60, 90 points:
-/// ~190 µs); the exact pressure solves and the halved r–z and mirrored sweeps since made a
-/// step cheaper, and these figures then estimated 1.6–3.6 times what fifteen species and
-/// numerics measured (2026-11-27: the shipped species in both geometries, grids 60–120,
-/// all three advection schemes). Scaled down by 1.5, every one of them still costs no more
-/// than its estimate (Sarsia's bicubic r–z jet comes closest: 20.5 ms a second against 22).
-const COST_PER_CELL: f64 = 32e-9;
+/// Cost of one step on the reference machine: per fluid cell (semi-Lagrangian), per cell
+/// and diffusion sweep, and per body point. Fitted 2026-12-03 (`numerics -- fingerprint`,
+/// which prints each run's cost beside this estimate) over 120 runs: every shipped species
+/// and the paper's model, both geometries, the three advection schemes, grids 40 to 160,
+/// the least of two runs each, on the relative error, then raised by half so that every
+/// run costs no more than its estimate (at most 0.83 of it, the shipped species 0.51–0.74)
+/// but the paper's r–z dome on fine grids, whose fast flow splits its steps (up to 1.09).
+/// The fit before (2026-11-27) had costed a cell four times what the exact solves and the
+/// passes eight lanes wide leave of it, and a body point a third.
+const COST_PER_CELL: f64 = 6.9e-9;
 const COST_PER_CELL_SWEEP: f64 = 4e-9;
-const COST_PER_POINT: f64 = 0.2e-6;
+const COST_PER_POINT: f64 = 0.76e-6;
 
-/// What an advection scheme adds per fluid cell and step to the semi-Lagrangian step the
-/// figures above were measured with. The moon jelly at grid 120, one simulated second,
-/// three runs each (2026-11-27): MacCormack's correction 1.40 times the plain step's
-/// whole cost, Catmull–Rom sampling 1.78 times; the model had left both out.
-fn advection_cost_per_cell(advection: Advection) -> f64 {
+/// What a cell costs with an advection scheme against the semi-Lagrangian step, from the
+/// same fit: MacCormack's two traces and its limiter 3.4 times, the bicubic trace (eight
+/// lanes wide, `fluid::window`) 2.05 times.
+fn advection_cost(advection: Advection) -> f64 {
     match advection {
-        Advection::SemiLagrangian => 0.0,
-        Advection::MacCormack => 0.40 * COST_PER_CELL,
-        Advection::Cubic => 0.78 * COST_PER_CELL,
+        Advection::SemiLagrangian => 1.0,
+        Advection::MacCormack => 3.4,
+        Advection::Cubic => 2.05,
     }
 }
 
@@ -330,6 +331,14 @@ pub fn oral_tubes(s: &Species) -> usize {
 /// Estimated seconds of one core per simulated second: steps per second times the cost
 /// of a step (its cells and its body points) on the reference machine.
 pub fn simulation_cost(s: &Species) -> f64 {
+    let [cells, sweeps, points] = simulation_cost_terms(s);
+    COST_PER_CELL * cells + COST_PER_CELL_SWEEP * sweeps + COST_PER_POINT * points
+}
+
+/// What [`simulation_cost`] counts in a simulated second: fluid cells stepped (each
+/// weighted by what its advection scheme costs against the semi-Lagrangian step), cells
+/// swept by the explicit viscosity, and body points stepped. Its constants price them.
+pub fn simulation_cost_terms(s: &Species) -> [f64; 3] {
     let cells = (s.grid_resolution as f64).powi(2);
     // Body points half a kernel cell apart (`Species::kernel_stretch_at`).
     let spacing = 0.5 * (s.cell_size() * s.kernel_stretch_at(s.cell_size())) as f64;
@@ -349,9 +358,11 @@ pub fn simulation_cost(s: &Species) -> f64 {
         SliceGeometry::Axisymmetric => (0.1, 64.0),
     };
     let sweeps = (alpha / sweep).ceil().clamp(1.0, most) * 0.5;
-    let per_cell =
-        COST_PER_CELL + advection_cost_per_cell(s.advection) + COST_PER_CELL_SWEEP * sweeps;
-    steps * (per_cell * cells + COST_PER_POINT * points)
+    [
+        steps * cells * advection_cost(s.advection),
+        steps * cells * sweeps,
+        steps * points,
+    ]
 }
 
 /// Checks every field against the table, then the limits that join fields.
