@@ -67,7 +67,8 @@ pub(super) fn screen_sizes<'a>(
 /// them, the rest in no order.
 ///
 /// Only each tier's budget is put in order, after a selection, and the far changes: ten
-/// thousand jellyfish sorted twice a frame were a serial millisecond.
+/// thousand jellyfish sorted twice a frame, in a serial system, were 1.5% of the 10,002
+/// bench's CPU.
 pub(super) fn choose(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
     let boost = 1.0 + levels.hysteresis.max(0.0);
     let claim = |r: &Rank, tier: Tier| {
