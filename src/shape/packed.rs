@@ -43,7 +43,10 @@ pub(crate) mod layout;
 mod shared;
 mod tubes;
 
-pub use shared::{FAR_GUIDES, far_guides, far_guides_of, instance_len, pack_frame, pack_instance};
+pub use shared::{
+    FAR_GUIDES, far_guides, far_guides_of, instance_len, pack_frame, pack_instance,
+    write_instance_words,
+};
 pub use tubes::tentacle_vertex;
 
 use layout::*;

@@ -209,6 +209,11 @@ impl Snapshot {
         }
     }
 
+    /// The thinned trail a far step shares with its guides (`set_thin_trail`), if any.
+    pub fn shared_trail(&self) -> Option<&Arc<[Vec3]>> {
+        self.shared.as_ref()
+    }
+
     /// The fringe's trail as stored.
     pub fn fringe_trail(&self) -> Trail<'_> {
         Trail {

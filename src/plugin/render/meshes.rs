@@ -48,6 +48,11 @@ pub struct JellyfishMeshes {
     /// it at that step's frame.
     #[reflect(ignore)]
     pub(crate) shared: Option<(std::sync::Arc<PackedCycle>, u32)>,
+    /// The thinned trail a far jellyfish's `block` carries, and the guides it was packed
+    /// for: while the step it shows holds the same one, only the instance's own words are
+    /// written again (the trail changes a few times a second, the words every frame).
+    #[reflect(ignore)]
+    pub(crate) block_trail: Option<(std::sync::Arc<[Vec3]>, usize)>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     /// The trails as both paths draw them (`recorded::drawn_view`).

@@ -7,16 +7,20 @@ use super::meshes::{
     CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
 };
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
-use crate::plugin::interpolation::SliceHistory;
+use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::{JellyfishSlice, LiveSlice, ONE_AT_A_TIME, SMALL_BATCHES, Tier};
 use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
+use crate::shape::mesh::Resolution;
 use crate::shape::{self, SurfaceBuffers, packed};
+use crate::sim::guides::Trail;
+use crate::species::Species;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::camera::visibility::NoAutoAabb;
 use bevy::mesh::{Indices, MeshTag, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The CPU-heavy half, in parallel: blend the steps around the frame's time (a far
@@ -80,6 +84,7 @@ fn shape_one(
         packer,
         block,
         shared,
+        block_trail,
         buffers,
         trails,
         ..
@@ -116,8 +121,15 @@ fn shape_one(
         cycle.start(*index).map(|_| (Some(cycle), *index))
     });
     let built = if let Some((cycle, index)) = recorded_step {
-        block.clear();
-        packed::pack_instance(&slice.species, &res, seed, time, view.trail, block);
+        pack_far(
+            shown,
+            &slice.species,
+            &res,
+            (seed, time),
+            view.trail,
+            block,
+            block_trail,
+        );
         match (cycle, shared.as_mut()) {
             (Some(cycle), _) => *shared = Some((cycle, index)),
             (None, Some(held)) => held.1 = index,
@@ -132,6 +144,7 @@ fn shape_one(
         if result.is_ok() || block.is_empty() {
             *block = packed;
             *shared = None;
+            *block_trail = None;
         }
         result
     } else {
@@ -141,6 +154,46 @@ fn shape_one(
     if let Err(e) = built {
         warn_once!("jellyfish mesh not rebuilt, keeping the last frame: {e}");
     }
+}
+
+/// A far jellyfish's instance in `block`: its own words and the thinned `trail` of the
+/// step it shows. Where that is the shared trail `block` already carries, at the same
+/// guides, the trail's half floats are kept and only the words written (the same bits: the
+/// packing is a function of the trail alone).
+fn pack_far(
+    shown: &Snapshot,
+    species: &Species,
+    res: &Resolution,
+    (seed, time): (u32, f32),
+    trail: Trail,
+    block: &mut Vec<f32>,
+    block_trail: &mut Option<(Arc<[Vec3]>, usize)>,
+) {
+    let guides = packed::far_guides(res);
+    // The trail drawn is the shared one itself (not thinned again from it).
+    let shared = shown.shared_trail().filter(|s| {
+        std::ptr::eq(s.as_ptr(), trail.offsets.as_ptr()) && s.len() == trail.offsets.len()
+    });
+    let carried = block_trail
+        .as_ref()
+        .zip(shared)
+        .is_some_and(|((held, at), s)| Arc::ptr_eq(held, s) && *at == guides);
+    if carried && block.len() == packed::instance_len(res) {
+        packed::write_instance_words(species, seed, time, block);
+        debug_assert!(
+            {
+                let mut fresh = Vec::new();
+                packed::pack_instance(species, res, seed, time, trail, &mut fresh);
+                let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                bits(&fresh) == bits(block)
+            },
+            "a kept trail is the trail packed afresh"
+        );
+        return;
+    }
+    block.clear();
+    packed::pack_instance(species, res, seed, time, trail, block);
+    *block_trail = shared.map(|s| (s.clone(), guides));
 }
 
 /// The serial half: copy the buffers into the mesh assets (creating them the first time).

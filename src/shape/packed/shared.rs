@@ -58,10 +58,9 @@ pub fn pack_frame(
     Ok(())
 }
 
-/// Appends a far jellyfish's own words (`INSTANCE` values: its `seed`, its noise at
-/// `time` (s), `H_FRAME` left for the upload) and its thinned fringe `trail`
-/// (`Trail::thin_into` with [`far_guides`]); zeros where it has no such trail (its guides
-/// not followed). A far jellyfish does not follow its oral arms.
+/// Appends a far jellyfish's own words (`INSTANCE` values: [`write_instance_words`]) and
+/// its thinned fringe `trail` (`Trail::thin_into` with [`far_guides`]); zeros where it has
+/// no such trail (its guides not followed). A far jellyfish does not follow its oral arms.
 pub fn pack_instance(
     species: &Species,
     res: &Resolution,
@@ -70,14 +69,9 @@ pub fn pack_instance(
     trail: Trail,
     out: &mut Vec<f32>,
 ) {
-    let variation = Variation::new(species, seed, time);
     let start = out.len();
     out.resize(start + INSTANCE, 0.0);
-    let own = &mut out[start..];
-    own[H_SEED] = f32::from_bits(seed);
-    own[H_TAU] = variation.time_coordinate() as f32;
-    own[H_UNSTRUCTURED] = variation.unstructured_amplitude();
-    own[H_FRAME] = f32::from_bits(0);
+    write_instance_words(species, seed, time, &mut out[start..]);
     if trail.nodes == THIN_NODES && trail.guides() == far_guides(res) {
         for nodes in trail.offsets.chunks_exact(THIN_NODES) {
             write_halves(&nodes[1..], out);
@@ -85,6 +79,18 @@ pub fn pack_instance(
     } else {
         out.resize(start + instance_len(res), 0.0);
     }
+}
+
+/// Writes a far jellyfish's own words over the first `INSTANCE` values of `own`: its
+/// `seed`, its noise at `time` (s), `H_FRAME` left for the upload. These change every
+/// frame; its trail, packed after them, a few times a second, so an instance whose trail
+/// has not changed needs only these written again.
+pub fn write_instance_words(species: &Species, seed: u32, time: f32, own: &mut [f32]) {
+    let variation = Variation::new(species, seed, time);
+    own[H_SEED] = f32::from_bits(seed);
+    own[H_TAU] = variation.time_coordinate() as f32;
+    own[H_UNSTRUCTURED] = variation.unstructured_amplitude();
+    own[H_FRAME] = f32::from_bits(0);
 }
 
 /// Values of a far jellyfish's instance at `res`: 16 at most (64 bytes).

@@ -265,6 +265,25 @@ fn a_shared_frame_with_its_own_words_is_its_own_block() {
         let mut instance = Vec::new();
         pack_instance(&species, &res, seed, time, view.trail, &mut instance);
         assert_eq!(instance.len(), instance_len(&res));
+        // Another individual's instance over the same trail, its words written again (as
+        // a far jellyfish whose trail has not changed since): this one, bit for bit.
+        let mut rewritten = Vec::new();
+        pack_instance(
+            &species,
+            &res,
+            seed ^ 0x5a5a,
+            time + 1.5,
+            view.trail,
+            &mut rewritten,
+        );
+        assert_ne!(rewritten[..INSTANCE], instance[..INSTANCE]);
+        write_instance_words(&species, seed, time, &mut rewritten);
+        let words = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            words(&rewritten),
+            words(&instance),
+            "seed {seed} at {time} s"
+        );
         let (far, own) = (Block::far(&instance, &frame), Block::own(&own));
         let bits = |v: Vertex| {
             [v.position, v.normal]
