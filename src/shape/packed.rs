@@ -44,7 +44,7 @@ mod shared;
 mod tubes;
 
 pub use shared::{
-    FAR_GUIDES, far_guides, far_guides_of, instance_len, pack_frame, pack_instance,
+    FAR_GUIDES, MAX_INSTANCE, far_guides, far_guides_of, instance_len, pack_frame, pack_instance,
     write_instance_words,
 };
 pub use tubes::tentacle_vertex;

@@ -3,7 +3,7 @@
 
 use super::recorded::{DrawnTrails, PackedCycle};
 use crate::plugin::interpolation::Snapshot;
-use crate::shape::packed::ShapePacker;
+use crate::shape::packed::{self, ShapePacker};
 use crate::shape::{JellyMesh, Resolution};
 use bevy::prelude::*;
 
@@ -48,11 +48,16 @@ pub struct JellyfishMeshes {
     /// it at that step's frame.
     #[reflect(ignore)]
     pub(crate) shared: Option<(std::sync::Arc<PackedCycle>, u32)>,
-    /// The thinned trail a far jellyfish's `block` carries, and the guides it was packed
-    /// for: while the step it shows holds the same one, only the instance's own words are
-    /// written again (the trail changes a few times a second, the words every frame).
+    /// A far jellyfish's instance, what the upload sends while `shared` is set: held here,
+    /// not on the heap, so that ten thousand of them are written and read one after
+    /// another, each frame.
     #[reflect(ignore)]
-    pub(crate) block_trail: Option<(std::sync::Arc<[Vec3]>, usize)>,
+    pub(crate) instance: FarInstance,
+    /// The thinned trail `instance` carries, and the guides it was packed for: while the
+    /// step shown holds the same one, only the instance's own words are written again
+    /// (the trail changes a few times a second, the words every frame).
+    #[reflect(ignore)]
+    pub(crate) instance_trail: Option<(std::sync::Arc<[Vec3]>, usize)>,
     #[reflect(ignore)]
     pub(crate) packer: ShapePacker,
     /// The trails as both paths draw them (`recorded::drawn_view`).
@@ -83,6 +88,35 @@ impl JellyfishMeshes {
     /// How its surfaces are built, once the plugin has set it up.
     pub fn path(&self) -> Option<SurfacePath> {
         self.path
+    }
+}
+
+/// A far jellyfish's instance (`packed::pack_instance`: its own words, then its thinned
+/// trail), in place.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FarInstance {
+    words: [f32; packed::MAX_INSTANCE],
+    len: usize,
+}
+
+impl FarInstance {
+    pub(crate) fn words(&self) -> &[f32] {
+        &self.words[..self.len]
+    }
+
+    pub(crate) fn words_mut(&mut self) -> &mut [f32] {
+        &mut self.words[..self.len]
+    }
+
+    /// Holds `words`, an instance as `pack_instance` appends it.
+    pub(crate) fn set(&mut self, words: &[f32]) {
+        debug_assert!(
+            words.len() <= packed::MAX_INSTANCE,
+            "{} values",
+            words.len()
+        );
+        self.len = words.len().min(packed::MAX_INSTANCE);
+        self.words[..self.len].copy_from_slice(&words[..self.len]);
     }
 }
 

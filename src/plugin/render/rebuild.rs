@@ -4,7 +4,7 @@
 
 use super::culling::{active_frusta, seen, slice_bounds};
 use super::meshes::{
-    CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
+    CPU_MESH_TAG, FarInstance, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
 };
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
@@ -84,7 +84,8 @@ fn shape_one(
         packer,
         block,
         shared,
-        block_trail,
+        instance,
+        instance_trail,
         buffers,
         trails,
         ..
@@ -127,8 +128,7 @@ fn shape_one(
             &res,
             (seed, time),
             view.trail,
-            block,
-            block_trail,
+            (block, instance, instance_trail),
         );
         match (cycle, shared.as_mut()) {
             (Some(cycle), _) => *shared = Some((cycle, index)),
@@ -144,7 +144,7 @@ fn shape_one(
         if result.is_ok() || block.is_empty() {
             *block = packed;
             *shared = None;
-            *block_trail = None;
+            *instance_trail = None;
         }
         result
     } else {
@@ -156,36 +156,35 @@ fn shape_one(
     }
 }
 
-/// A far jellyfish's instance in `block`: its own words and the thinned `trail` of the
-/// step it shows. Where that is the shared trail `block` already carries, at the same
-/// guides, the trail's half floats are kept and only the words written (the same bits: the
-/// packing is a function of the trail alone).
+/// A far jellyfish's instance: its own words and the thinned `trail` of the step it
+/// shows, in `instance` (packed in `block` first). Where that is the shared trail the
+/// instance already carries, at the same guides, the trail's half floats are kept and only
+/// the words written (the same bits: the packing is a function of the trail alone).
 fn pack_far(
     shown: &Snapshot,
     species: &Species,
     res: &Resolution,
     (seed, time): (u32, f32),
     trail: Trail,
-    block: &mut Vec<f32>,
-    block_trail: &mut Option<(Arc<[Vec3]>, usize)>,
+    (block, instance, instance_trail): (&mut Vec<f32>, &mut FarInstance, &mut HeldTrail),
 ) {
     let guides = packed::far_guides(res);
     // The trail drawn is the shared one itself (not thinned again from it).
     let shared = shown.shared_trail().filter(|s| {
         std::ptr::eq(s.as_ptr(), trail.offsets.as_ptr()) && s.len() == trail.offsets.len()
     });
-    let carried = block_trail
+    let carried = instance_trail
         .as_ref()
         .zip(shared)
         .is_some_and(|((held, at), s)| Arc::ptr_eq(held, s) && *at == guides);
-    if carried && block.len() == packed::instance_len(res) {
-        packed::write_instance_words(species, seed, time, block);
+    if carried && instance.words().len() == packed::instance_len(res) {
+        packed::write_instance_words(species, seed, time, instance.words_mut());
         debug_assert!(
             {
                 let mut fresh = Vec::new();
                 packed::pack_instance(species, res, seed, time, trail, &mut fresh);
                 let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                bits(&fresh) == bits(block)
+                bits(&fresh) == bits(instance.words())
             },
             "a kept trail is the trail packed afresh"
         );
@@ -193,8 +192,12 @@ fn pack_far(
     }
     block.clear();
     packed::pack_instance(species, res, seed, time, trail, block);
-    *block_trail = shared.map(|s| (s.clone(), guides));
+    instance.set(block);
+    *instance_trail = shared.map(|s| (s.clone(), guides));
 }
+
+/// The shared trail a far instance carries, and the guides it was packed for.
+type HeldTrail = Option<(Arc<[Vec3]>, usize)>;
 
 /// The serial half: copy the buffers into the mesh assets (creating them the first time).
 /// An empty surface (a species without tentacles) is hidden, never handed to Bevy.

@@ -93,7 +93,13 @@ pub fn write_instance_words(species: &Species, seed: u32, time: f32, own: &mut [
     own[H_FRAME] = f32::from_bits(0);
 }
 
-/// Values of a far jellyfish's instance at `res`: 16 at most (64 bytes).
+/// Values of a far jellyfish's instance at `res`: [`MAX_INSTANCE`] at most (64 bytes).
 pub fn instance_len(res: &Resolution) -> usize {
     INSTANCE + far_guides(res) * trail_values(THIN_NODES)
 }
+
+/// The most values a far jellyfish's instance takes ([`instance_len`]), 64 bytes: room
+/// enough to hold one in place of a heap block.
+pub const MAX_INSTANCE: usize = 16;
+
+const _: () = assert!(INSTANCE + FAR_GUIDES * trail_values(THIN_NODES) <= MAX_INSTANCE);

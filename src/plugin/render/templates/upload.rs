@@ -172,11 +172,17 @@ pub(crate) fn upload(
         {
             let start = (shapes.len() / 4) as u32;
             offsets[slot as usize] = start;
-            extend_words(&mut shapes, &meshes.block);
-            // A far jellyfish's frame is its recorded step's, in the recorded buffer.
+            // A far jellyfish sends its instance, its frame its recorded step's in the
+            // recorded buffer.
             let frame = match &meshes.shared {
-                Some((cycle, index)) => RECORDED_FRAME as u32 | recorded.start(cycle, *index),
-                None => start,
+                Some((cycle, index)) => {
+                    extend_words(&mut shapes, meshes.instance.words());
+                    RECORDED_FRAME as u32 | recorded.start(cycle, *index)
+                }
+                None => {
+                    extend_words(&mut shapes, &meshes.block);
+                    start
+                }
             };
             set_word(&mut shapes, start as usize + H_FRAME, frame);
         }
