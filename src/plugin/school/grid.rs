@@ -12,6 +12,12 @@ pub(super) struct Neighbours {
     buckets: HashMap<IVec3, Vec<usize>>,
 }
 
+impl Default for Neighbours {
+    fn default() -> Self {
+        Self::new(1.0)
+    }
+}
+
 impl Neighbours {
     /// An empty grid of cubes of side `cell` (world units; a typical query's range keeps
     /// a query to a few cubes).
@@ -29,10 +35,24 @@ impl Neighbours {
     /// A grid of `points` by their index.
     pub(super) fn of(points: &[(Vec3, f32)], cell: f32) -> Self {
         let mut grid = Self::new(cell);
-        for (i, (p, _)) in points.iter().enumerate() {
-            grid.insert(i, *p);
-        }
+        grid.refill(points, cell);
         grid
+    }
+
+    /// Files `points` by their index anew, in cubes of side `cell`, keeping the lists of
+    /// the cubes still in use: a school's grid is made again every tick, and ten thousand
+    /// pushes into fresh lists were most of the making. Cubes left empty are dropped.
+    pub(super) fn refill(&mut self, points: &[(Vec3, f32)], cell: f32) {
+        let cell = Self::new(cell).cell;
+        if cell != self.cell {
+            self.buckets.clear();
+            self.cell = cell;
+        }
+        self.buckets.values_mut().for_each(Vec::clear);
+        for (i, (p, _)) in points.iter().enumerate() {
+            self.insert(i, *p);
+        }
+        self.buckets.retain(|_, indices| !indices.is_empty());
     }
 
     /// Whether cube `key` can hold a point within `reach` of `p`: its box comes that near
@@ -221,6 +241,25 @@ mod tests {
                     assert_eq!(found, all, "cell {cell}, range {range}, at {p}");
                 }
             }
+        }
+    }
+
+    /// A grid filled again (from other points, in cubes of the same or another size)
+    /// holds what a new one holds: the same points in the same cubes, none left over.
+    #[test]
+    fn a_refilled_grid_is_a_new_one() {
+        let before = scattered(300, Vec3::new(20.0, 2.0, 3.0));
+        let points = scattered(500, Vec3::new(4.0, 6.0, 5.0));
+        let listed = |grid: &Neighbours| {
+            let mut cubes: Vec<(IVec3, Vec<usize>)> =
+                grid.buckets.iter().map(|(k, v)| (*k, v.clone())).collect();
+            cubes.sort_by_key(|(k, _)| k.to_array());
+            cubes
+        };
+        for (first, then) in [(0.5, 0.5), (2.0, 0.5), (0.5, 3.0)] {
+            let mut grid = Neighbours::of(&before, first);
+            grid.refill(&points, then);
+            assert_eq!(listed(&grid), listed(&Neighbours::of(&points, then)));
         }
     }
 

@@ -34,6 +34,7 @@ pub(super) fn steer_schools(
     schools: Query<(&JellyfishSchool, &Transform)>,
     mut members: Query<(&MemberOf, &Swimmer, &SwimMotion, &mut Steering)>,
     mut tick: Local<u32>,
+    mut grid: Local<Neighbours>,
 ) {
     let t = time.elapsed_secs();
     let turn = *tick % STEER_EVERY;
@@ -46,7 +47,8 @@ pub(super) fn steer_schools(
         .collect();
     all.sort_by(super::by_position);
     let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
-    let grid = Neighbours::of(&all, cube(&all, NEIGHBOUR_REACH * widest));
+    grid.refill(&all, cube(&all, NEIGHBOUR_REACH * widest));
+    let grid = &*grid;
     // Each member's heading reads only `all` and the grid, so the members decide side by
     // side: the same headings, however many threads share them.
     members.par_iter_mut().for_each_init(
@@ -88,7 +90,7 @@ pub(super) fn steer_schools(
 
 /// The grid's cube for `points` whose neighbours reach up to `range`: about eight members
 /// to a cube where they crowd (so a search for the nearest reads a few cubes), never
-/// finer than a quarter of the range nor wider than it.
+/// finer than a quarter of the range nor wider than it (to within a tenth of an octave).
 fn cube(points: &[(Vec3, f32)], range: f32) -> f32 {
     let (lo, hi) = points.iter().fold(
         (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
@@ -96,7 +98,12 @@ fn cube(points: &[(Vec3, f32)], range: f32) -> f32 {
     );
     let volume = (hi - lo).max(Vec3::splat(range)).element_product();
     let crowded = 2.0 * (volume / points.len().max(1) as f32).cbrt();
-    crowded.clamp(0.25 * range, range.max(1e-6))
+    let side = crowded.clamp(0.25 * range, range.max(1e-6));
+    // On steps of a fifth of an octave: a school's box drifts a little every tick, and a
+    // grid whose cubes keep their size keeps its lists (`Neighbours::refill`). The grid
+    // finds the same members with cubes of any size.
+    let step = (5.0 * side.log2()).round() / 5.0;
+    if step.is_finite() { step.exp2() } else { side }
 }
 
 /// The push on a member at `p` of `radius` from a neighbour at `q` of `rq`, if it is
