@@ -12,6 +12,15 @@ pub(super) struct Neighbours {
     buckets: HashMap<IVec3, Vec<usize>>,
 }
 
+/// `cell`, or a unit cube where it is not a usable side.
+fn usable(cell: f32) -> f32 {
+    if cell.is_finite() && cell > 1e-6 {
+        cell
+    } else {
+        1.0
+    }
+}
+
 impl Default for Neighbours {
     fn default() -> Self {
         Self::new(1.0)
@@ -23,11 +32,7 @@ impl Neighbours {
     /// a query to a few cubes).
     fn new(cell: f32) -> Self {
         Self {
-            cell: if cell.is_finite() && cell > 1e-6 {
-                cell
-            } else {
-                1.0
-            },
+            cell: usable(cell),
             buckets: HashMap::default(),
         }
     }
@@ -43,7 +48,7 @@ impl Neighbours {
     /// the cubes still in use: a school's grid is made again every tick, and ten thousand
     /// pushes into fresh lists were most of the making. Cubes left empty are dropped.
     pub(super) fn refill(&mut self, points: &[(Vec3, f32)], cell: f32) {
-        let cell = Self::new(cell).cell;
+        let cell = usable(cell);
         if cell != self.cell {
             self.buckets.clear();
             self.cell = cell;
