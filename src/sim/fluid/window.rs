@@ -52,26 +52,41 @@ pub(super) mod avx {
         out: &mut [f32],
     ) -> usize {
         use crate::sim::fluid::sampling::{cubic_sample4, linear_sample4, within};
-        debug_assert!(faces.len() >= 8, "eight faces at least");
         // Rows and columns the window reaches either side of a face: a foot's cell is its
         // face's or the one before, and bicubic reads one more on each side of it.
         let reach = if CUBIC { 2 } else { 1 };
         // The window's rows (`j − reach` to `j + reach`) if the samplers' clamps to the
         // field do not reach them (`locate` keeps a cell below the last but one).
         let inside_rows = j >= reach && j + reach < ny;
+        // Every load below lies within these bounds, checked once a row rather than at
+        // each of a window's forty loads: the carried rows hold the faces and the four
+        // around each (a u face's v columns `i − 1` and `i`, a v face's u columns `i` and
+        // `i + 1`), and the field holds its rows.
+        match carried {
+            Carried::U { u, v } => assert!(
+                faces.start >= 1 && faces.end <= u.len() && v.iter().all(|v| faces.end <= v.len())
+            ),
+            Carried::V { v, u } => {
+                assert!(faces.end <= v.len() && u.iter().all(|u| faces.end < u.len()))
+            }
+        }
+        assert!(faces.len() >= 8 && field.len() >= nx * ny);
         // Macros, not closures: the compiler left closures here as calls.
         macro_rules! load {
-            // SAFETY: each load reads eight values of a slice of eight.
-            ($v:expr) => {
-                unsafe { _mm256_loadu_ps($v[..8].as_ptr()) }
-            };
+            // Eight values of `$v` from `$at` on.
+            ($v:expr, $at:expr) => {{
+                let (v, at): (&[f32], usize) = (&$v, $at);
+                debug_assert!(at + 8 <= v.len());
+                // SAFETY: within the bounds asserted above (and in debug builds here).
+                unsafe { _mm256_loadu_ps(v.as_ptr().add(at)) }
+            }};
         }
         // ((a + a′) + b) + b′ of the four faces around each, from column `k` on.
         macro_rules! around {
             ($rows:expr, $k:expr) => {{
                 let ([a, b], k) = ($rows, $k);
-                let sum = _mm256_add_ps(load!(a[k..]), load!(a[k + 1..]));
-                _mm256_add_ps(_mm256_add_ps(sum, load!(b[k..])), load!(b[k + 1..]))
+                let sum = _mm256_add_ps(load!(a, k), load!(a, k + 1));
+                _mm256_add_ps(_mm256_add_ps(sum, load!(b, k)), load!(b, k + 1))
             }};
         }
         let (step, quarter) = (_mm256_set1_ps(s), _mm256_set1_ps(s * 0.25));
@@ -88,12 +103,12 @@ pub(super) mod avx {
             // Each foot: its face less the step times the velocity there.
             let (x, y) = match carried {
                 Carried::U { u, v } => (
-                    _mm256_sub_ps(home_x, _mm256_mul_ps(step, load!(u[at..]))),
+                    _mm256_sub_ps(home_x, _mm256_mul_ps(step, load!(u, at))),
                     _mm256_sub_ps(home_y, _mm256_mul_ps(quarter, around!(v, at - 1))),
                 ),
                 Carried::V { v, u } => (
                     _mm256_sub_ps(home_x, _mm256_mul_ps(quarter, around!(u, at))),
-                    _mm256_sub_ps(home_y, _mm256_mul_ps(step, load!(v[at..]))),
+                    _mm256_sub_ps(home_y, _mm256_mul_ps(step, load!(v, at))),
                 ),
             };
             let (before_x, after_x) = (_mm256_sub_ps(home_x, one), _mm256_add_ps(home_x, one));
@@ -123,10 +138,11 @@ pub(super) mod avx {
                 // (Loops, not closures: those were left as calls.)
                 let mut columns = [[_mm256_setzero_ps(); 4]; 5];
                 for (k, row) in columns.iter_mut().enumerate().take(2 * reach + 1) {
-                    let w = &field[(j + k - reach) * nx + at - reach..][..8 + 2 * reach];
+                    // `inside`: these rows and columns lie within the field.
+                    let w = (j + k - reach) * nx + at - reach;
                     let mut shifted = [_mm256_setzero_ps(); 5];
                     for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
-                        *v = load!(w[o..]);
+                        *v = load!(field, w + o);
                     }
                     for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
                         *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
@@ -157,7 +173,7 @@ pub(super) mod avx {
                     for (l, out) in limited.iter_mut().enumerate() {
                         *out = within(value[l], [a0[l], a1[l], b0[l], b1[l]]);
                     }
-                    load!(limited)
+                    load!(limited, 0)
                 } else {
                     // The cell's row and the one after: rows j − 1 to j + 1 of the window,
                     // the lower two or the upper two.
