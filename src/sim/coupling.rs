@@ -18,6 +18,8 @@ pub(crate) struct Coupling {
     /// The points read as their partner's mirror image (an axisymmetric slice's points
     /// past the axis), ascending.
     mirrored: Vec<Mirrored>,
+    /// The rows of faces the stencils reach, both components': where the forces land.
+    rows: std::ops::Range<usize>,
 }
 
 /// A point past the axis of an axisymmetric slice, read through its partner's stencils.
@@ -55,6 +57,12 @@ impl Coupling {
             fluid.locate(Component::U, *p, u);
             fluid.locate(Component::V, *p, v);
         }
+        // A mirrored point spreads through its partner's stencils: the same rows.
+        let rows = self.u.iter().chain(&self.v).map(Stencil::rows);
+        self.rows = rows
+            .filter(|r| !r.is_empty())
+            .reduce(|a, b| a.start.min(b.start)..a.end.max(b.end))
+            .unwrap_or(0..0);
     }
 
     /// How many points the last [`Self::locate`] read as their partners' mirrors, and how
@@ -85,6 +93,7 @@ impl Coupling {
     /// density, over each face's volume per unit depth.
     pub(crate) fn spread(&self, fluid: &mut Fluid, forces: &[Vec2]) {
         let n = fluid.n;
+        fluid.force_in_rows(self.rows.clone());
         let (scale_u, scale_v) = (&fluid.spread_u, &fluid.spread_v);
         let (force_u, force_v) = (&mut fluid.force_u, &mut fluid.force_v);
         let mut skip = self.mirrored.iter().map(|m| m.point).peekable();

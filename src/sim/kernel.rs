@@ -55,6 +55,15 @@ impl Stencil {
         self.row = nx;
     }
 
+    /// The rows of faces the stencil reaches.
+    pub(crate) fn rows(&self) -> std::ops::Range<usize> {
+        let rows = self.y.index[..self.y.len].iter().map(|&j| j as usize);
+        match (rows.clone().min(), rows.max()) {
+            (Some(first), Some(last)) => first..last + 1,
+            _ => 0..0,
+        }
+    }
+
     /// `(face index, weight)` pairs.
     #[cfg(test)]
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {

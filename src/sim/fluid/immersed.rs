@@ -8,37 +8,44 @@ use crate::sim::kernel::{Stencil, reach};
 use glam::Vec2;
 
 impl Fluid {
-    /// Adds the accumulated force density, then clears it.
+    /// Adds the accumulated force density, then clears it: only the rows it was spread
+    /// to ([`Fluid::force_rows`]), the rest being zero. A slice solved on its half adds
+    /// it there, then mirrors the faces just past the axis (which its viscosity and
+    /// divergence read); the projection mirrors the rest.
     pub(crate) fn apply_force(&mut self, dt: f32) {
         let scale = dt / self.rho;
-        if let Some(solved) = self.half().map(|r| r.solved) {
-            // The solved half only, then the faces just past the axis (which its viscosity
-            // and divergence read) its mirror image: the projection mirrors the rest.
-            let n = self.n;
-            for (field, force, row, columns) in [
-                (&mut self.u, &mut self.force_u, n + 1, solved),
-                (&mut self.v, &mut self.force_v, n, solved),
-            ] {
-                for (u, f) in field.chunks_exact_mut(row).zip(force.chunks_exact(row)) {
-                    for (u, f) in u[..columns].iter_mut().zip(&f[..columns]) {
-                        *u += scale * *f;
-                    }
+        let (n, rows) = (self.n, std::mem::take(&mut self.force_rows));
+        let solved = self.half().map(|r| r.solved);
+        for (field, force, row, count) in [
+            (&mut self.u, &mut self.force_u, n + 1, n),
+            (&mut self.v, &mut self.force_v, n, n + 1),
+        ] {
+            let faces = rows.start.min(count) * row..rows.end.min(count) * row;
+            let (field, force) = (&mut field[faces.clone()], &mut force[faces]);
+            let columns = solved.unwrap_or(row);
+            for (u, f) in field.chunks_exact_mut(row).zip(force.chunks_exact_mut(row)) {
+                for (u, f) in u[..columns].iter_mut().zip(&f[..columns]) {
+                    *u += scale * *f;
                 }
-                force.fill(0.0);
+                f.fill(0.0);
             }
+        }
+        if solved.is_some() {
             mirror_past_axis(&mut self.u, &mut self.v, n);
-            self.enforce_walls();
-            return;
-        }
-        for (u, f) in self.u.iter_mut().zip(self.force_u.iter_mut()) {
-            *u += scale * *f;
-            *f = 0.0;
-        }
-        for (v, f) in self.v.iter_mut().zip(self.force_v.iter_mut()) {
-            *v += scale * *f;
-            *f = 0.0;
         }
         self.enforce_walls();
+    }
+
+    /// Widens the rows that may hold force to `rows` as well.
+    pub(crate) fn force_in_rows(&mut self, rows: std::ops::Range<usize>) {
+        if rows.is_empty() {
+            return;
+        }
+        self.force_rows = if self.force_rows.is_empty() {
+            rows
+        } else {
+            self.force_rows.start.min(rows.start)..self.force_rows.end.max(rows.end)
+        };
     }
 
     /// Velocity at a point, per component under the fluid's kernel.

@@ -64,6 +64,10 @@ pub struct Fluid {
     pub(crate) force_u: Vec<f32>,
     /// Force density accumulated for the next step, N/m³, on the `v` faces.
     pub(crate) force_v: Vec<f32>,
+    /// The rows of faces (`j`, of either component) that may hold force: the rest are
+    /// zero, and the step adds and clears these only. Whoever writes force widens it
+    /// ([`Fluid::force_in_rows`]).
+    pub(crate) force_rows: std::ops::Range<usize>,
     /// Kinematic viscosity, m²/s.
     pub(crate) nu: f32,
     /// Density, kg/m³.
@@ -129,6 +133,7 @@ impl Fluid {
             v: vec![0.0; faces],
             force_u: vec![0.0; faces],
             force_v: vec![0.0; faces],
+            force_rows: 0..0,
             nu,
             rho,
             advection: Advection::default(),
@@ -244,6 +249,7 @@ impl Fluid {
         for f in [&mut self.u, &mut self.force_u, &mut self.force_v] {
             f.fill(0.0);
         }
+        self.force_rows = 0..0;
         self.v.fill(self.stream);
     }
 }

@@ -281,6 +281,7 @@ fn pipe_flow_reaches_poiseuille() {
         let steps = (settle / dt) as usize;
         for _ in 0..steps {
             f.force_v.fill(gradient);
+            f.force_in_rows(0..n + 1);
             f.apply_force(dt);
             hold_fully_developed(&mut f);
             f.diffuse(dt);
