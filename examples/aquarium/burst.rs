@@ -145,8 +145,35 @@ impl Frames {
         println!(
             "{what}: {} frames, mean {mean:.2} ms, worst {worst:.2} ms (frame {at}: CPU \
              simulation {simulation:.1} ms, meshing {meshing:.1} ms, {changes} tier changes), \
-             {over} over the p99 ({p99:.2} ms); at most {data:.2} MB of mesh data in a frame",
-            self.ms.len()
+             {over} over the p99 ({p99:.2} ms){}; at most {data:.2} MB of mesh data in a frame",
+            self.ms.len(),
+            runs(self.ms.iter().map(|&ms| ms > p99)),
         );
     }
+}
+
+/// The frames where `over` holds, as runs (" at frames 3, 17-20"): where a burst's cost
+/// falls tells what it is.
+fn runs(over: impl Iterator<Item = bool>) -> String {
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for (i, _) in over.enumerate().filter(|(_, o)| *o) {
+        match runs.last_mut() {
+            Some((_, end)) if *end + 1 == i => *end = i,
+            _ => runs.push((i, i)),
+        }
+    }
+    if runs.is_empty() {
+        return String::new();
+    }
+    let runs: Vec<String> = runs
+        .iter()
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a}-{b}")
+            }
+        })
+        .collect();
+    format!(" at frames {}", runs.join(", "))
 }
