@@ -18,6 +18,10 @@ pub(crate) struct SliceHistory {
     len: usize,
     /// The slice time the frame shows, s (see `JellyfishSlice::display_time`).
     shown: f64,
+    /// The pose at `shown`, blended when it was set, while the stepping had the states in
+    /// cache (ten thousand far histories do not fit in one): the frame's transforms then
+    /// read no state. `None` once the states change.
+    shown_pose: Option<Pose>,
     /// A shape difference left by a change of tier, faded out over the next steps.
     carry: Option<Box<Carry>>,
 }
@@ -89,6 +93,7 @@ impl SliceHistory {
         fill: impl FnOnce(&mut Snapshot),
     ) {
         let slot = self.next_slot(Self::capacity(clock, frame));
+        self.shown_pose = None;
         let snapshot = &mut self.slots[slot];
         fill(snapshot);
         snapshot.pose = pose;
@@ -132,6 +137,7 @@ impl SliceHistory {
         let shift = time - newest.time;
         let mut shape = newest.clone();
         shape.add(now, -1.0);
+        self.shown_pose = None;
         for s in self.states_mut() {
             s.time += shift;
         }
@@ -185,6 +191,7 @@ impl SliceHistory {
     /// Sets the slice time the frame shows, s.
     pub fn show(&mut self, time: f64) {
         self.shown = time;
+        self.shown_pose = self.blend_pose(time);
     }
 
     /// The two states around the time the frame shows, and how far between them it is.
@@ -194,12 +201,18 @@ impl SliceHistory {
 
     /// The pose the frame shows, blended between the steps around it.
     pub fn shown_pose(&self) -> Option<Pose> {
-        self.shown().map(|(a, b, f)| a.pose.blend(&b.pose, f))
+        self.shown_pose.or_else(|| self.blend_pose(self.shown))
+    }
+
+    /// The pose at time `t`, blended between the steps around it.
+    fn blend_pose(&self, t: f64) -> Option<Pose> {
+        self.bracket(t).map(|(a, b, f)| a.pose.blend(&b.pose, f))
     }
 
     /// Moves every stored pose as `edit` moves `from` (a game moved or turned the
     /// jellyfish): what the frames show continues from where it was put.
     pub fn move_poses(&mut self, from: Pose, to: Pose) {
+        self.shown_pose = None;
         for s in self.states_mut() {
             s.pose = s.pose.moved(from, to);
         }
@@ -246,6 +259,44 @@ mod tests {
         let (a, b, _) = history.bracket(2.0).unwrap();
         assert_eq!((a.time, b.time), (0.8, 0.8));
         assert_eq!(history.newest().map(|s| s.time), Some(0.8));
+    }
+
+    /// The pose `show` blended is the pose blended at the shown time, and a step
+    /// recorded, a change of tier or a move after it is seen: the frame never shows a
+    /// pose of old states.
+    #[test]
+    fn the_shown_pose_is_blended_from_the_states_as_they_are() {
+        let at = |x: f32| Pose {
+            position: Vec3::new(x, 0.0, 0.0),
+            ..Pose::default()
+        };
+        let clock = FixedClock::new(1.0, 10);
+        let mut history = SliceHistory::default();
+        for k in 1..=8 {
+            history.record(&clock, 0.2, at(k as f32), |s| s.time = f64::from(k) / 10.0);
+        }
+        let fresh = |h: &SliceHistory| {
+            let (a, b, f) = h.shown().unwrap();
+            a.pose.blend(&b.pose, f)
+        };
+        for t in [0.0, 0.55, 0.65, 0.8, 2.0] {
+            history.show(t);
+            assert_eq!(history.shown_pose(), Some(fresh(&history)), "at {t}");
+        }
+        // Past the newest step, which a step recorded then replaces.
+        history.show(0.95);
+        history.record(&clock, 0.2, at(100.0), |s| s.time = 0.9);
+        assert_eq!(history.shown_pose(), Some(at(100.0)));
+        let before = history.shown_pose().unwrap();
+        history.move_poses(at(0.0), at(10.0));
+        let moved = history.shown_pose().unwrap();
+        assert!((moved.position.x - before.position.x - 10.0).abs() < 1e-4);
+        assert_eq!(Some(moved), Some(fresh(&history)));
+        history.show(0.85);
+        let mut now = Snapshot::default();
+        now.time = 5.0;
+        history.change_tier(&now, 5.0, 2);
+        assert_eq!(history.shown_pose(), Some(fresh(&history)));
     }
 
     #[test]
