@@ -18,12 +18,20 @@ pub(crate) struct SliceHistory {
     len: usize,
     /// The slice time the frame shows, s (see `JellyfishSlice::display_time`).
     shown: f64,
-    /// The pose at `shown`, blended when it was set, while the stepping had the states in
-    /// cache (ten thousand far histories do not fit in one): the frame's transforms then
-    /// read no state. `None` once the states change.
-    shown_pose: Option<Pose>,
+    /// What the frame shows at `shown`, found when it was set, while the stepping had the
+    /// states in cache (ten thousand far histories do not fit in one): the frame's
+    /// systems then read only the states they draw. `None` once the states change.
+    shown_at: Option<Shown>,
     /// A shape difference left by a change of tier, faded out over the next steps.
     carry: Option<Box<Carry>>,
+}
+
+/// The states around the shown time (`state` indices) and how far between them, and the
+/// pose blended there.
+#[derive(Clone, Copy)]
+struct Shown {
+    states: (usize, usize, f32),
+    pose: Pose,
 }
 
 /// What the shape was minus what the new tier shows, at the change; added back to the
@@ -93,7 +101,7 @@ impl SliceHistory {
         fill: impl FnOnce(&mut Snapshot),
     ) {
         let slot = self.next_slot(Self::capacity(clock, frame));
-        self.shown_pose = None;
+        self.shown_at = None;
         let snapshot = &mut self.slots[slot];
         fill(snapshot);
         snapshot.pose = pose;
@@ -137,7 +145,7 @@ impl SliceHistory {
         let shift = time - newest.time;
         let mut shape = newest.clone();
         shape.add(now, -1.0);
-        self.shown_pose = None;
+        self.shown_at = None;
         for s in self.states_mut() {
             s.time += shift;
         }
@@ -170,49 +178,61 @@ impl SliceHistory {
     /// time lies: ten thousand far jellyfish's histories do not fit in a cache, and this
     /// reads no state the frame does not show.
     pub fn bracket(&self, t: f64) -> Option<(&Snapshot, &Snapshot, f32)> {
-        let newest = self.newest()?;
-        if t > newest.time || t.is_nan() {
+        let (a, b, f) = self.search(t)?;
+        Some((self.state(a), self.state(b), f))
+    }
+
+    /// [`Self::bracket`] as the states' indices, oldest first.
+    fn search(&self, t: f64) -> Option<(usize, usize, f32)> {
+        let newest = self.len.checked_sub(1)?;
+        if t > self.state(newest).time || t.is_nan() {
             return Some((newest, newest, 0.0));
         }
         // The first state at or after `t` (the times ascend), and the one before it.
-        let mut i = self.len - 1;
+        let mut i = newest;
         while i > 0 && self.state(i - 1).time >= t {
             i -= 1;
         }
         if i == 0 {
-            let s = self.state(0);
-            return Some((s, s, 0.0));
+            return Some((0, 0, 0.0));
         }
         let (a, b) = (self.state(i - 1), self.state(i));
         let span = (b.time - a.time).max(1e-12);
-        Some((a, b, ((t - a.time) / span) as f32))
+        Some((i - 1, i, ((t - a.time) / span) as f32))
     }
 
-    /// Sets the slice time the frame shows, s.
+    /// Sets the slice time the frame shows, s, and finds what it shows there.
     pub fn show(&mut self, time: f64) {
         self.shown = time;
-        self.shown_pose = self.blend_pose(time);
+        self.shown_at = self.search(time).map(|states| {
+            let (a, b, f) = states;
+            let pose = self.state(a).pose.blend(&self.state(b).pose, f);
+            Shown { states, pose }
+        });
     }
 
     /// The two states around the time the frame shows, and how far between them it is.
     pub fn shown(&self) -> Option<(&Snapshot, &Snapshot, f32)> {
-        self.bracket(self.shown)
+        match self.shown_at {
+            Some(Shown {
+                states: (a, b, f), ..
+            }) => Some((self.state(a), self.state(b), f)),
+            None => self.bracket(self.shown),
+        }
     }
 
     /// The pose the frame shows, blended between the steps around it.
     pub fn shown_pose(&self) -> Option<Pose> {
-        self.shown_pose.or_else(|| self.blend_pose(self.shown))
-    }
-
-    /// The pose at time `t`, blended between the steps around it.
-    fn blend_pose(&self, t: f64) -> Option<Pose> {
-        self.bracket(t).map(|(a, b, f)| a.pose.blend(&b.pose, f))
+        match self.shown_at {
+            Some(shown) => Some(shown.pose),
+            None => self.shown().map(|(a, b, f)| a.pose.blend(&b.pose, f)),
+        }
     }
 
     /// Moves every stored pose as `edit` moves `from` (a game moved or turned the
     /// jellyfish): what the frames show continues from where it was put.
     pub fn move_poses(&mut self, from: Pose, to: Pose) {
-        self.shown_pose = None;
+        self.shown_at = None;
         for s in self.states_mut() {
             s.pose = s.pose.moved(from, to);
         }
@@ -261,11 +281,11 @@ mod tests {
         assert_eq!(history.newest().map(|s| s.time), Some(0.8));
     }
 
-    /// The pose `show` blended is the pose blended at the shown time, and a step
-    /// recorded, a change of tier or a move after it is seen: the frame never shows a
-    /// pose of old states.
+    /// What `show` found (the states around the shown time and the pose blended there) is
+    /// what a search finds, and a step recorded, a change of tier or a move after it is
+    /// seen: the frame never shows old states.
     #[test]
-    fn the_shown_pose_is_blended_from_the_states_as_they_are() {
+    fn what_is_shown_is_found_from_the_states_as_they_are() {
         let at = |x: f32| Pose {
             position: Vec3::new(x, 0.0, 0.0),
             ..Pose::default()
@@ -275,28 +295,32 @@ mod tests {
         for k in 1..=8 {
             history.record(&clock, 0.2, at(k as f32), |s| s.time = f64::from(k) / 10.0);
         }
-        let fresh = |h: &SliceHistory| {
-            let (a, b, f) = h.shown().unwrap();
-            a.pose.blend(&b.pose, f)
+        let same = |h: &SliceHistory, t: f64| {
+            let ((a, b, f), (c, d, g)) = (h.shown().unwrap(), h.bracket(t).unwrap());
+            assert!(std::ptr::eq(a, c) && std::ptr::eq(b, d) && f == g, "at {t}");
+            assert_eq!(h.shown_pose(), Some(c.pose.blend(&d.pose, g)), "at {t}");
         };
-        for t in [0.0, 0.55, 0.65, 0.8, 2.0] {
+        for t in [0.0, 0.55, 0.6, 0.65, 0.8, 0.81, 2.0] {
             history.show(t);
-            assert_eq!(history.shown_pose(), Some(fresh(&history)), "at {t}");
+            same(&history, t);
         }
         // Past the newest step, which a step recorded then replaces.
         history.show(0.95);
         history.record(&clock, 0.2, at(100.0), |s| s.time = 0.9);
+        same(&history, 0.95);
         assert_eq!(history.shown_pose(), Some(at(100.0)));
+        history.show(0.85);
         let before = history.shown_pose().unwrap();
         history.move_poses(at(0.0), at(10.0));
+        same(&history, 0.85);
         let moved = history.shown_pose().unwrap();
         assert!((moved.position.x - before.position.x - 10.0).abs() < 1e-4);
-        assert_eq!(Some(moved), Some(fresh(&history)));
-        history.show(0.85);
         let mut now = Snapshot::default();
         now.time = 5.0;
         history.change_tier(&now, 5.0, 2);
-        assert_eq!(history.shown_pose(), Some(fresh(&history)));
+        same(&history, 0.85);
+        let oldest = history.shown().map(|(a, ..)| a.time).unwrap();
+        assert!((oldest - 4.6).abs() < 1e-9, "{oldest}");
     }
 
     #[test]
