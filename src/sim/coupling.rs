@@ -7,7 +7,7 @@
 //! so a step finds their stencils once.
 
 use super::fluid::{Component, Fluid};
-use super::kernel::Stencil;
+use super::kernel::{Stencil, span};
 use glam::Vec2;
 
 /// The stencils of a set of points on the grid, per velocity component.
@@ -59,10 +59,7 @@ impl Coupling {
         }
         // A mirrored point spreads through its partner's stencils: the same rows.
         let rows = self.u.iter().chain(&self.v).map(Stencil::rows);
-        self.rows = rows
-            .filter(|r| !r.is_empty())
-            .reduce(|a, b| a.start.min(b.start)..a.end.max(b.end))
-            .unwrap_or(0..0);
+        self.rows = rows.fold(0..0, span);
     }
 
     /// How many points the last [`Self::locate`] read as their partners' mirrors, and how

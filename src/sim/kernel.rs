@@ -15,6 +15,7 @@
 //! three cells wide at every grid, the stroke grew by a quarter with each 1.5× refinement.
 
 pub(crate) use crate::species::Kernel;
+use std::ops::Range;
 
 /// Most faces a stencil reaches along one axis (a kernel stretched four times).
 const MAX_TAPS: usize = 13;
@@ -56,7 +57,7 @@ impl Stencil {
     }
 
     /// The rows of faces the stencil reaches.
-    pub(crate) fn rows(&self) -> std::ops::Range<usize> {
+    pub(crate) fn rows(&self) -> Range<usize> {
         let rows = self.y.index[..self.y.len].iter().map(|&j| j as usize);
         match (rows.clone().min(), rows.max()) {
             (Some(first), Some(last)) => first..last + 1,
@@ -122,6 +123,15 @@ impl Stencil {
                 }
             }
         }
+    }
+}
+
+/// The rows of both `a` and `b` and any between (an empty range is no rows).
+pub(crate) fn span(a: Range<usize>, b: Range<usize>) -> Range<usize> {
+    match (a.is_empty(), b.is_empty()) {
+        (true, _) => b,
+        (_, true) => a,
+        _ => a.start.min(b.start)..a.end.max(b.end),
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::symmetry::mirror_past_axis;
 use super::{Component, Fluid};
-use crate::sim::kernel::{Stencil, reach};
+use crate::sim::kernel::{Stencil, reach, span};
 use glam::Vec2;
 
 impl Fluid {
@@ -38,14 +38,7 @@ impl Fluid {
 
     /// Widens the rows that may hold force to `rows` as well.
     pub(crate) fn force_in_rows(&mut self, rows: std::ops::Range<usize>) {
-        if rows.is_empty() {
-            return;
-        }
-        self.force_rows = if self.force_rows.is_empty() {
-            rows
-        } else {
-            self.force_rows.start.min(rows.start)..self.force_rows.end.max(rows.end)
-        };
+        self.force_rows = span(std::mem::take(&mut self.force_rows), rows);
     }
 
     /// Velocity at a point, per component under the fluid's kernel.
