@@ -114,12 +114,22 @@ impl Neighbours {
                 key.cmpge(lo).all() && key.cmple(hi).all() && indices.iter().any(|i| hit(*i))
             });
         }
+        // `p`'s own cube first: in a crowded box most places are ruled out by a neighbour
+        // there, and the answer does not depend on the order.
+        let own = self.key(p);
+        let mut ask = |key: IVec3| {
+            self.buckets
+                .get(&key)
+                .is_some_and(|indices| indices.iter().any(|i| hit(*i)))
+        };
+        if ask(own) {
+            return true;
+        }
         for x in lo.x..=hi.x {
             for y in lo.y..=hi.y {
                 for z in lo.z..=hi.z {
-                    if let Some(indices) = self.buckets.get(&IVec3::new(x, y, z))
-                        && indices.iter().any(|i| hit(*i))
-                    {
+                    let key = IVec3::new(x, y, z);
+                    if key != own && ask(key) {
                         return true;
                     }
                 }
