@@ -152,7 +152,13 @@ impl FixedClock {
 
     /// Steps the added time pays for that are not taken yet.
     pub fn steps_due(&self) -> u64 {
-        let target = steps_in(self.added, self.step);
+        self.steps_due_at(self.added)
+    }
+
+    /// Steps `added` s of added time would pay for that are not taken yet: what a later
+    /// [`Self::add_until`] will take (before its cap), without taking them.
+    pub fn steps_due_at(&self, added: f64) -> u64 {
+        let target = steps_in(added, self.step);
         if target.is_finite() && target > self.taken as f64 {
             target as u64 - self.taken
         } else {

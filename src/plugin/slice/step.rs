@@ -213,9 +213,7 @@ impl Step<'_> {
                     .push(entity, Lifecycle::Recovered(sim.recoveries()));
             }
         } else if let Some(replay) = slice.replay.as_mut() {
-            let clock = &replay.clock;
-            let due = (self.until - clock.added() + clock.step()) / clock.step();
-            history.prefetch(due.clamp(0.0, 4.0) as usize);
+            history.prefetch(replay.clock.steps_due_at(self.until).min(4) as usize);
             replay.advance_until(self.until, resting, |replay: &Replay, cycle| {
                 let clock = &replay.clock;
                 let stroke = Stroke {
