@@ -52,8 +52,9 @@ impl Plugin for SchoolPlugin {
 }
 
 /// A school of one species in a box: spawn it with a `Transform` (the box's centre and
-/// orientation) and the plugin spawns its members once the species has loaded. Changing
-/// it spawns the school again.
+/// orientation) and the plugin spawns its members once the species has loaded, 64 a
+/// frame (a school of thousands fills in a few frames, none of them long). Changing it
+/// spawns the school again.
 #[derive(Component, Clone, Debug, Reflect)]
 #[reflect(Component)]
 #[require(Transform)]

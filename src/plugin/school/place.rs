@@ -46,11 +46,29 @@ pub(super) fn reach(species: &Species, scale: f32) -> f32 {
     scale * (0.5 * species.diameter + 0.5 * hanging)
 }
 
-/// Spawns the members of every school that is new or changed and whose species has
-/// loaded, despawning the members it had. Places are drawn in the box and kept at least
-/// two reaches apart, within the school and from every member of the other schools (the
-/// spacing relaxed by a tenth after each [`TRIES`] failures, and kept relaxed for the
-/// school's next members: a box too full for one is too full for the next).
+/// At most this many members are placed and spawned in one frame, over all schools: a
+/// school of thousands fills over a few frames instead of in one long one (placing a
+/// thousand in a full tank took 7 ms of one thread, spawning them as much again). A count,
+/// so the same members appear on the same frames in every run; twice the jellyfish that
+/// start in a frame (`NEW_SLICES_PER_FRAME`), so starting is never held up by it.
+pub(crate) const MEMBERS_PER_FRAME: usize = 64;
+
+/// A school being filled: where its placement stands between frames.
+pub(super) struct Filling {
+    school: Entity,
+    rng: SplitMix,
+    /// The spacing factor the last member needed (see [`place`]).
+    spacing: f32,
+    /// Members placed so far.
+    placed: usize,
+}
+
+/// Fills every school that is new or changed and whose species has loaded, despawning the
+/// members it had, [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities
+/// first. Places are drawn in the box and kept at least two reaches apart, within the
+/// school and from every member of the other schools (the spacing relaxed by a tenth after
+/// each [`TRIES`] failures, and kept relaxed for the school's next members: a box too full
+/// for one is too full for the next).
 pub(super) fn fill_schools(
     mut commands: Commands,
     schools: Query<(
@@ -62,6 +80,7 @@ pub(super) fn fill_schools(
     others: Query<(&Transform, &Swimmer, &MemberOf)>,
     species: Res<Assets<Species>>,
     mut waiting: Local<Vec<Entity>>,
+    mut filling: Local<Vec<Filling>>,
 ) {
     let mut due: Vec<Entity> = schools
         .iter()
@@ -71,44 +90,68 @@ pub(super) fn fill_schools(
         .collect();
     due.sort_unstable();
     due.dedup();
-    // Everyone who stays: members of the schools not spawned again.
-    let mut kept: Vec<(Vec3, f32)> = others
-        .iter()
-        .filter(|(.., of)| due.binary_search(&of.0).is_err())
-        .map(|(t, s, _)| (t.translation, s.radius))
-        .collect();
-    kept.sort_by(super::by_position);
-    // Everyone kept or placed, in a grid to find the near ones: a school of thousands is
-    // placed in a frame, not in minutes.
-    let mut grid = Neighbours::of(&kept, cube_for(&kept, &due, &schools, &species));
-    let mut widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
+    // Schools (re)started now: their old members go, and a fill under way starts over.
+    let mut restarted: Vec<Entity> = Vec::new();
     for entity in due {
-        let Ok((entity, spec, transform, members)) = schools.get(entity) else {
+        let Ok((entity, spec, _, members)) = schools.get(entity) else {
             continue;
         };
-        let Some(kind) = species.get(&spec.species) else {
+        if !species.contains(&spec.species) {
             waiting.push(entity);
             continue;
-        };
+        }
         if let Some(members) = members {
             for m in members.entities() {
                 commands.entity(*m).despawn();
             }
         }
-        let mut rng = SplitMix::new(spec.seed);
+        filling.retain(|f| f.school != entity);
+        filling.push(Filling {
+            school: entity,
+            rng: SplitMix::new(spec.seed),
+            spacing: 1.0,
+            placed: 0,
+        });
+        restarted.push(entity);
+    }
+    filling.retain(|f| schools.contains(f.school));
+    if filling.is_empty() {
+        return;
+    }
+    filling.sort_unstable_by_key(|f| f.school);
+    // Everyone who stays: members of the schools not started again (those of a school
+    // still filling included).
+    let mut kept: Vec<(Vec3, f32)> = others
+        .iter()
+        .filter(|(.., of)| !restarted.contains(&of.0))
+        .map(|(t, s, _)| (t.translation, s.radius))
+        .collect();
+    kept.sort_by(super::by_position);
+    // Everyone kept or placed, in a grid to find the near ones: a school of thousands is
+    // placed in milliseconds, not in minutes.
+    let coming: Vec<Entity> = filling.iter().map(|f| f.school).collect();
+    let mut grid = Neighbours::of(&kept, cube_for(&kept, &coming, &schools, &species));
+    let mut widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
+    let mut budget = MEMBERS_PER_FRAME;
+    for fill in filling.iter_mut() {
+        let Ok((entity, spec, transform, _)) = schools.get(fill.school) else {
+            continue;
+        };
+        let Some(kind) = species.get(&spec.species) else {
+            continue;
+        };
         let scale = spec.scale.max(1e-6);
-        // Once the box is too full for a spacing, it stays so: the next member starts
-        // trying at the spacing the last one needed.
-        let mut spacing = 1.0;
-        for number in 0..spec.count {
+        let (rng, spacing) = (&mut fill.rng, &mut fill.spacing);
+        let end = spec.count.min(fill.placed + budget);
+        for number in fill.placed..end {
             let size = scale * (1.0 + spec.size_spread.clamp(0.0, 0.9) * rng.signed());
             let radius = reach(kind, size);
             let at = place(
-                &mut rng,
+                rng,
                 spec.half_extents,
                 radius,
                 transform,
-                &mut spacing,
+                spacing,
                 |p, spacing| {
                     !grid.any_around(p, spacing * (radius + widest), |i| {
                         let (q, rq) = kept[i];
@@ -128,23 +171,26 @@ pub(super) fn fill_schools(
             let placed = Transform::from_translation(at)
                 .with_rotation(rotation)
                 .with_scale(Vec3::splat(size));
-            commands.spawn(member(
-                entity,
-                &spec,
-                placed,
-                radius,
-                number as u32,
-                &mut rng,
-            ));
+            commands.spawn(member(entity, &spec, placed, radius, number as u32, rng));
+        }
+        budget -= end.saturating_sub(fill.placed);
+        fill.placed = end.max(fill.placed);
+        if budget == 0 {
+            break;
         }
     }
+    filling.retain(|f| {
+        schools
+            .get(f.school)
+            .is_ok_and(|(_, spec, ..)| f.placed < spec.count)
+    });
 }
 
 /// The grid's cube: twice the widest reach of anyone kept or about to be placed, so that
 /// a query looks at the cubes next to its own.
 fn cube_for(
     kept: &[(Vec3, f32)],
-    due: &[Entity],
+    coming: &[Entity],
     schools: &Query<(
         Entity,
         Ref<JellyfishSchool>,
@@ -153,7 +199,7 @@ fn cube_for(
     )>,
     species: &Assets<Species>,
 ) -> f32 {
-    let coming = due.iter().filter_map(|e| {
+    let coming = coming.iter().filter_map(|e| {
         let (_, spec, ..) = schools.get(*e).ok()?;
         let largest = spec.scale.max(1e-6) * (1.0 + spec.size_spread.clamp(0.0, 0.9));
         Some(reach(species.get(&spec.species)?, largest))

@@ -128,3 +128,53 @@ fn a_changed_school_is_spawned_again() {
         );
     }
 }
+
+/// A school larger than a frame's share fills a few dozen members a frame, so no frame
+/// places and spawns thousands; every member is still apart from all the others and in
+/// its box, and it is the same school in every run.
+#[test]
+fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
+    let half = Vec3::new(10.0, 5.0, 10.0);
+    let fill = || {
+        let (mut app, school) = school_app(150, half);
+        // All far: no slices to build, only the species' recorded cycle.
+        app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
+            near: 0,
+            mid: 0,
+            ..default()
+        };
+        let mut counts: Vec<usize> = Vec::new();
+        while counts.last() != Some(&150) {
+            assert!(counts.len() < 20, "members after each frame: {counts:?}");
+            app.update();
+            counts.push(members(&app, school).len());
+        }
+        let places: Vec<Vec3> = members(&app, school)
+            .iter()
+            .map(|m| app.world().get::<Transform>(*m).unwrap().translation)
+            .collect();
+        (counts, places)
+    };
+    let (counts, places) = fill();
+    println!("members after each frame: {counts:?}");
+    let most = std::iter::once(counts[0])
+        .chain(counts.windows(2).map(|w| w[1] - w[0]))
+        .max()
+        .unwrap_or(0);
+    assert_eq!(
+        most, 64,
+        "at most 64 a frame, and that many while some wait"
+    );
+    assert!(
+        counts.iter().filter(|&&n| n > 0).count() >= 3,
+        "150 members in at least three frames: {counts:?}"
+    );
+    let diameter = species().diameter * 20.0;
+    for (i, a) in places.iter().enumerate() {
+        assert!(inside(*a, half, 0.0), "{a} outside");
+        for b in &places[i + 1..] {
+            assert!(a.distance(*b) >= 1.15 * diameter, "{a} and {b} overlap");
+        }
+    }
+    assert_eq!(fill().1, places, "the same school every run");
+}
