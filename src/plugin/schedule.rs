@@ -35,6 +35,9 @@ pub enum JellyfishSystems {
     StirWater,
     /// Last: the frame's figures handed to Bevy's diagnostics.
     Diagnostics,
+    /// Last: the next steps of cycles recorded after an edit start, to run in the
+    /// background while the frame is drawn and until the next frame's `ChooseDetail`.
+    RecordCycles,
 }
 
 /// Orders the sets and inserts the shared resources: the settings (kept if the app already
@@ -81,6 +84,9 @@ impl Plugin for JellyfishSchedulePlugin {
                 FixedUpdate,
                 (JellyfishSystems::StepWater, JellyfishSystems::StirWater).chain(),
             )
-            .configure_sets(Last, JellyfishSystems::Diagnostics);
+            .configure_sets(
+                Last,
+                JellyfishSystems::RecordCycles.after(JellyfishSystems::Diagnostics),
+            );
     }
 }

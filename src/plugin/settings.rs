@@ -74,9 +74,10 @@ pub struct DetailLevels {
     /// slice: a copy and up to three steps).
     pub promotions_per_frame: usize,
     /// Steps a frame of each cycle recorded after an edit (a species' far cycle and its
-    /// compact variant, side by side): more records sooner, fewer keeps the frames as
-    /// short as they were (at least one is taken). A count, not a time, so the new cycle
-    /// arrives on the same frame in every run.
+    /// compact variant), taken in the background from the end of one frame to the next
+    /// frame's levels of detail: more records sooner, fewer leaves more of the cores to
+    /// the frames (at least one is taken). A count, not a time, so the new cycle arrives on the same
+    /// frame in every run.
     pub recording_steps_per_frame: u32,
 }
 

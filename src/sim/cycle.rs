@@ -159,9 +159,9 @@ impl CycleCache {
 }
 
 /// [`CycleCache::record`] a few steps at a time: a species recorded over many frames, a
-/// bounded number of steps in each, instead of all at once or on a thread that competes
-/// with the frame for the cores. The same steps in the same order, so the same cycle, bit
-/// for bit; and a count of steps, not a time, so it ends on the same frame in every run.
+/// bounded number of steps in each, instead of all at once. The same steps in the same
+/// order, so the same cycle, bit for bit; and a count of steps, not a time, so it ends on
+/// the same frame in every run.
 pub struct CycleRecorder {
     species: Species,
     sim: SliceSim,

@@ -1,25 +1,90 @@
 //! The recorded stroke cycles far jellyfish replay and nearer ones resume from.
 
+use crate::plugin::settings::JellyfishSettings;
 use crate::sim::cycle::{CycleCache, CycleRecorder};
 use crate::species::Species;
 use bevy::prelude::*;
-use bevy::tasks::ComputeTaskPool;
+use bevy::tasks::{AsyncComputeTaskPool, Task, block_on};
 use std::sync::Arc;
 
 /// The recorded cycle of every species (and its compact-box variant) a far or resuming
 /// jellyfish has needed. Recording one costs 10 to 60 cycles of one slice (0.1–0.4 s): it
 /// is done when first needed, in that frame, so which jellyfish are far is the same in
 /// every run; after an edit it is recorded a few steps a frame
-/// ([`DetailLevels::recording_steps_per_frame`](crate::plugin::DetailLevels)) while far
-/// jellyfish play the old cycle, so dragging an editor slider neither stalls the app nor
-/// lengthens its frames by more than those steps.
+/// ([`DetailLevels::recording_steps_per_frame`](crate::plugin::DetailLevels)) in the
+/// background while far jellyfish play the old cycle, so dragging an editor slider
+/// neither stalls the app nor, in a game that waits for its display, lengthens its
+/// frames.
 #[derive(Resource, Default, Reflect)]
 #[reflect(Resource, Default)]
 pub struct CycleCaches {
     #[reflect(ignore)]
     caches: Vec<Arc<CycleCache>>,
     #[reflect(ignore)]
-    recording: Vec<CycleRecorder>,
+    recording: Vec<Recording>,
+}
+
+/// A cycle recorded after an edit, a chunk of steps at a time: each chunk is started at
+/// the end of a frame ([`record_cycles`]) and taken up by the next frame's levels of
+/// detail ([`CycleCaches::collect`]), running in between on Bevy's async compute pool,
+/// while the frame is drawn and the game waits for its display, instead of inside the
+/// frame's own work. A chunk is a count of steps and is always waited for, so the cycle
+/// arrives on the same frame in every run, however quickly the pool ran it.
+struct Recording {
+    species: Species,
+    chunk: Chunk,
+}
+
+/// The cycle once recorded, or the recorder to go on with.
+type Outcome = Result<Box<CycleCache>, Box<CycleRecorder>>;
+
+/// Where a [`Recording`] is between two frames.
+enum Chunk {
+    /// Waiting for its next chunk.
+    Idle(Box<CycleRecorder>),
+    /// Taking a chunk in the background.
+    Running(Task<Outcome>),
+    /// Took its chunk in place: no async pool to wait for.
+    Took(Outcome),
+}
+
+impl Recording {
+    /// Starts the next chunk of `steps` steps, if none is under way.
+    fn start(self, steps: u32) -> Self {
+        let Chunk::Idle(mut recorder) = self.chunk else {
+            return self;
+        };
+        let take = move || recorder.advance(steps).map(Box::new).ok_or(recorder);
+        // A pool without threads (or the web's, run between frames) cannot be waited for.
+        let chunk = match AsyncComputeTaskPool::try_get() {
+            Some(pool) if pool.thread_num() > 0 && cfg!(not(target_arch = "wasm32")) => {
+                Chunk::Running(pool.spawn(async move { take() }))
+            }
+            _ => Chunk::Took(take()),
+        };
+        Self { chunk, ..self }
+    }
+
+    /// Waits for the chunk under way: the cycle once done, or the recording idle again.
+    fn finish(self) -> Result<Box<CycleCache>, Box<Self>> {
+        let outcome = match self.chunk {
+            Chunk::Idle(_) => return Err(Box::new(self)),
+            Chunk::Running(task) => block_on(task),
+            Chunk::Took(outcome) => outcome,
+        };
+        outcome.map_err(|recorder| {
+            Box::new(Self {
+                species: self.species,
+                chunk: Chunk::Idle(recorder),
+            })
+        })
+    }
+}
+
+/// Starts the next chunk of every recording
+/// ([`DetailLevels::recording_steps_per_frame`](crate::plugin::DetailLevels) steps).
+pub(super) fn record_cycles(mut caches: ResMut<CycleCaches>, settings: Res<JellyfishSettings>) {
+    caches.record(settings.detail.recording_steps_per_frame);
 }
 
 impl CycleCaches {
@@ -42,34 +107,35 @@ impl CycleCaches {
         if !self.is_recording(species)
             && let Ok(recorder) = CycleRecorder::new(species)
         {
-            self.recording.push(recorder);
+            self.recording.push(Recording {
+                species: species.clone(),
+                chunk: Chunk::Idle(Box::new(recorder)),
+            });
         }
         None
     }
 
-    /// Takes `steps` more steps (at least one) of every recording, side by side, and keeps
-    /// the cycles that are done: a budget of none would hold far jellyfish on the old
-    /// cycle, and the tier changes of the edited species, for ever.
-    pub fn collect(&mut self, steps: u32) {
-        if self.recording.is_empty() {
-            return;
+    /// Takes up the chunks of steps started last frame ([`Self::record`]), waiting for
+    /// any still running, and keeps the cycles that are done, in the order they were
+    /// asked for.
+    pub fn collect(&mut self) {
+        for recording in std::mem::take(&mut self.recording) {
+            match recording.finish() {
+                Ok(cache) => self.caches.push(Arc::new(*cache)),
+                Err(recording) => self.recording.push(*recording),
+            }
         }
+    }
+
+    /// Starts `steps` more steps (at least one) of every recording, in the background
+    /// until the next [`Self::collect`]: a budget of none would hold far jellyfish on the
+    /// old cycle, and the tier changes of the edited species, for ever.
+    pub fn record(&mut self, steps: u32) {
         let steps = steps.max(1);
-        let done = ComputeTaskPool::get().scope(|scope| {
-            for recorder in &mut self.recording {
-                scope.spawn(async move { recorder.advance(steps) });
-            }
-        });
-        // One result per recorder, in the order they were spawned (directly from the
-        // scope's closure, so the order is deterministic).
-        let (mut done, caches) = (done.into_iter(), &mut self.caches);
-        self.recording.retain(|_| match done.next().flatten() {
-            Some(cache) => {
-                caches.push(Arc::new(cache));
-                false
-            }
-            None => true,
-        });
+        self.recording = std::mem::take(&mut self.recording)
+            .into_iter()
+            .map(|r| r.start(steps))
+            .collect();
     }
 
     /// Whether any cycle is still being recorded.
@@ -101,15 +167,15 @@ impl CycleCaches {
 
     /// Forgets cycles no jellyfish uses (edited species), keeping `in_use`.
     /// Recordings of species no jellyfish has any more (an editor slider dragged on) are
-    /// dropped, which cancels them.
+    /// dropped, which cancels them (a chunk under way is left to end on its own).
     pub(super) fn retain(&mut self, in_use: &[Species]) {
         self.caches.retain(|c| in_use.contains(c.species()));
-        self.recording.retain(|r| in_use.contains(r.species()));
+        self.recording.retain(|r| in_use.contains(&r.species));
     }
 
     /// Whether the cycle of `species` is being recorded.
     pub fn is_recording(&self, species: &Species) -> bool {
-        self.recording.iter().any(|r| r.species() == species)
+        self.recording.iter().any(|r| &r.species == species)
     }
 
     /// Heap bytes held.

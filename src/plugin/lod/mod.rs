@@ -36,6 +36,10 @@ impl Plugin for DetailPlugin {
             .add_systems(
                 PreUpdate,
                 tiers::change_tiers.in_set(JellyfishSystems::ChooseDetail),
+            )
+            .add_systems(
+                Last,
+                caches::record_cycles.in_set(JellyfishSystems::RecordCycles),
             );
     }
 }

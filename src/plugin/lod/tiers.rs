@@ -64,7 +64,7 @@ pub(super) fn change_tiers(
         }
     }
     // Far jellyfish of an edited species take its cycle once it is recorded.
-    caches.collect(settings.detail.recording_steps_per_frame);
+    caches.collect();
     for (_, mut slice, mut history, ..) in &mut jellyfish {
         let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.clone()) else {
             continue;
