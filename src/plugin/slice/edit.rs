@@ -9,6 +9,7 @@ use crate::plugin::species_asset::{Refusals, SpeciesRejected};
 use crate::plugin::swimming::SwimMotion;
 use crate::sim::SliceSim;
 use crate::species::{Species, SpeciesError};
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
 /// A jellyfish given another species handle, or whose species asset changed.
@@ -40,6 +41,9 @@ pub(super) fn apply_edits(
     mut rejected: MessageWriter<SpeciesRejected>,
     mut pool: ResMut<SpeciesPool>,
 ) {
+    // Each edited species is checked against its limits once, not once for each of the
+    // hundreds of jellyfish it reaches.
+    let mut checked: HashMap<AssetId<Species>, Result<(), SpeciesError>> = HashMap::default();
     for (jelly, mut slice, mut history, mut motion) in &mut jellyfish {
         let id = jelly.species.id();
         let Some(simulated) = species.get(id) else {
@@ -49,7 +53,11 @@ pub(super) fn apply_edits(
         if !slice.started() || *simulated == *slice.species {
             continue;
         }
-        match apply(slice, &mut history, &mut motion, simulated, &mut edited) {
+        let valid = checked.entry(id).or_insert_with(|| simulated.validate());
+        match valid
+            .clone()
+            .and_then(|()| apply(slice, &mut history, &mut motion, simulated, &mut edited))
+        {
             Ok(()) => slice.species = pool.intern(simulated),
             Err(error) => {
                 if refusals.say(id, &error, &mut rejected) {
@@ -62,7 +70,7 @@ pub(super) fn apply_edits(
     }
 }
 
-/// One jellyfish's slice (or replay) takes `species`, at its tier.
+/// One jellyfish's slice (or replay) takes `species`, validated, at its tier.
 fn apply(
     slice: &mut JellyfishSlice,
     history: &mut SliceHistory,
@@ -70,7 +78,6 @@ fn apply(
     species: &Species,
     edited: &mut MessageWriter<SliceEdited>,
 ) -> Result<(), SpeciesError> {
-    species.validate()?;
     let simulated = tier_species(species, slice.tier);
     slice.anchor = None;
     if let Some(sim) = slice.sim.as_mut() {
