@@ -28,6 +28,7 @@ pub fn run(
     frames: usize,
     fps: f64,
     burst: usize,
+    paced: bool,
     settings: JellyfishSettings,
     pools: TaskPoolPlugin,
 ) -> Result<(), String> {
@@ -49,8 +50,10 @@ pub fn run(
     let mut tier_ms = [0.0; 3];
     let steps_before = steps(&mut app);
     let mut frame_ms = Vec::with_capacity(frames);
+    let mut pacer = Pacer::new(fps, paced);
     let start = Instant::now();
     for _ in 0..frames {
+        pacer.wait();
         let frame = Instant::now();
         app.update();
         frame_ms.push(frame.elapsed().as_secs_f64() * 1e3);
@@ -125,10 +128,38 @@ pub fn run(
     println!("tank water: {:.2} ms of wall time per frame", water / n);
     println!("state hash: {:016x}", state_hash(&mut app));
     if burst > 0 {
-        crate::burst::edit(&mut app, p99, fps)?;
-        crate::burst::spawn(&mut app, burst, fps)?;
+        crate::burst::edit(&mut app, p99, fps, &mut pacer)?;
+        crate::burst::spawn(&mut app, burst, fps, &mut pacer)?;
     }
     Ok(())
+}
+
+/// Starts each frame on the next tick of 1/fps s, as a game held to its display does,
+/// leaving the rest of the tick idle (work in the background may use it); or, unpaced,
+/// frames back to back. Either way a frame's time is its update's own.
+pub struct Pacer {
+    period: Option<Duration>,
+    next: Option<Instant>,
+}
+
+impl Pacer {
+    pub fn new(fps: f64, paced: bool) -> Self {
+        Self {
+            period: paced.then(|| Duration::from_secs_f64(1.0 / fps)),
+            next: None,
+        }
+    }
+
+    /// Waits for the next tick (none unpaced; none if the last frame overran it).
+    pub fn wait(&mut self) {
+        let Some(period) = self.period else {
+            return;
+        };
+        let now = Instant::now();
+        let tick = self.next.map_or(now, |next| next.max(now));
+        std::thread::sleep(tick - now);
+        self.next = Some(tick + period);
+    }
 }
 
 /// FNV-1a over every jellyfish's seed, tier, phase and pose, to the bit, in an order that

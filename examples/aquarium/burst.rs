@@ -2,7 +2,7 @@
 //! recorded again, measured against the steady run's p99; then a crowd spawned at once,
 //! measured against the p99 of the crowd settled. A game must not feel either.
 
-use crate::bench::{count, value};
+use crate::bench::{Pacer, count, value};
 use crate::school::{SCALE, SPECIES, water_box};
 use bevy::prelude::*;
 use bevy_jellyfish::plugin::{CycleCaches, JellyfishSchool};
@@ -15,7 +15,7 @@ const SETTLE_SECONDS: f64 = 2.0;
 /// Spawns `crowd` more jellyfish at once (a school of each species), frames until every
 /// one has started, then `SETTLE_SECONDS` to settle and as long again as the crowd's own
 /// steady state, and prints the start against that state's p99.
-pub fn spawn(app: &mut App, crowd: usize, fps: f64) -> Result<(), String> {
+pub fn spawn(app: &mut App, crowd: usize, fps: f64, pacer: &mut Pacer) -> Result<(), String> {
     let before = count(app);
     let per_species = crowd.div_ceil(SPECIES.len());
     let server = app.world().resource::<AssetServer>().clone();
@@ -33,14 +33,14 @@ pub fn spawn(app: &mut App, crowd: usize, fps: f64) -> Result<(), String> {
     let expected = before + (per_species * SPECIES.len()) as f64;
     let mut start = Frames::default();
     while count(app) < expected {
-        start.update(app);
+        start.update(app, pacer);
         if start.ms.len() > 100 * settle(fps) {
             return Err(format!("{} of {expected} jellyfish started", count(app)));
         }
     }
     let mut settled = Frames::default();
     for _ in 0..2 * settle(fps) {
-        settled.update(app);
+        settled.update(app, pacer);
     }
     let steady = Frames {
         ms: settled.ms.split_off(settle(fps)),
@@ -63,7 +63,7 @@ pub fn spawn(app: &mut App, crowd: usize, fps: f64) -> Result<(), String> {
 /// Edits a species' muscle as the editor would, so that its stroke is recorded again (in
 /// the background) and its live slices take the new muscle; frames until the new cycle
 /// is in use and `SETTLE_SECONDS` more, printed against `p99` (ms).
-pub fn edit(app: &mut App, p99: f64, fps: f64) -> Result<(), String> {
+pub fn edit(app: &mut App, p99: f64, fps: f64, pacer: &mut Pacer) -> Result<(), String> {
     let server = app.world().resource::<AssetServer>().clone();
     let handle: Handle<Species> = server.load("species/aequorea.species.ron");
     let recording = |app: &App| app.world().resource::<CycleCaches>().recording();
@@ -77,7 +77,7 @@ pub fn edit(app: &mut App, p99: f64, fps: f64) -> Result<(), String> {
     let mut frames = Frames::default();
     let (mut began, mut recorded_at) = (false, None);
     while recorded_at.is_none() || frames.ms.len() < recorded_at.unwrap_or(0) + settle(fps) {
-        frames.update(app);
+        frames.update(app, pacer);
         began |= recording(app);
         if began && recorded_at.is_none() && !recording(app) {
             recorded_at = Some(frames.ms.len());
@@ -111,7 +111,8 @@ struct Frames {
 }
 
 impl Frames {
-    fn update(&mut self, app: &mut App) {
+    fn update(&mut self, app: &mut App, pacer: &mut Pacer) {
+        pacer.wait();
         let start = Instant::now();
         app.update();
         self.ms.push(start.elapsed().as_secs_f64() * 1e3);

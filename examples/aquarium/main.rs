@@ -24,7 +24,8 @@
 //! --frames 600 --fps 60`. It ends with a hash of every jellyfish's pose, phase and tier:
 //! with `--threads N` (N threads in the compute pool), the same for any N. With `--burst
 //! 1000` it then spawns a thousand more at once and edits a species, and prints those
-//! frames against the run's p99.
+//! frames against the run's p99. With `--paced` each frame starts on its 1/fps tick, as
+//! in a game held to its display, instead of back to back.
 //!
 //! The soak, `-- --soak SECONDS --count 334`: the same for longer, with churn (jellyfish
 //! despawned and spawned, species edited, a species file rewritten valid and broken, the
@@ -102,6 +103,10 @@ struct Args {
     /// species so its stroke is recorded again, each measured against the run's p99
     #[argh(option, default = "0")]
     burst: usize,
+    /// the benchmark: start each frame on its 1/fps tick, as a game held to its display
+    /// does, instead of back to back (frame times are still the update's own)
+    #[argh(switch)]
+    paced: bool,
     /// benchmark frames per second (default 60)
     #[argh(option, default = "60.0", from_str_fn(fps))]
     fps: f64,
@@ -202,6 +207,7 @@ fn main() -> ExitCode {
             frames,
             args.fps,
             args.burst,
+            args.paced,
             args.headless(),
             task_pools(args.threads),
         )
