@@ -63,12 +63,26 @@ pub(super) struct Filling {
     placed: usize,
 }
 
+/// Everyone a fill keeps apart from, held between frames while schools fill: where each
+/// was when the fills began, and each member placed since, where it was placed. Gathered
+/// again only when a school starts (again), so a fill of thousands does not sort every
+/// member each frame, and places do not depend on how far the first members swam before
+/// the next were placed (which the frame rate decides).
+#[derive(Default)]
+pub(super) struct Around {
+    kept: Vec<(Vec3, f32)>,
+    grid: Neighbours,
+    /// The widest reach in `kept`.
+    widest: f32,
+}
+
 /// Fills every school that is new or changed and whose species has loaded, despawning the
 /// members it had, [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities
 /// first. Places are drawn in the box and kept at least two reaches apart, within the
-/// school and from every member of the other schools (the spacing relaxed by a tenth after
-/// each [`TRIES`] failures, and kept relaxed for the school's next members: a box too full
-/// for one is too full for the next).
+/// school and from every member of the other schools, where each was when the fill began
+/// or was placed ([`Around`]; the spacing relaxed by a tenth after each [`TRIES`]
+/// failures, and kept relaxed for the school's next members: a box too full for one is too
+/// full for the next).
 pub(super) fn fill_schools(
     mut commands: Commands,
     schools: Query<(
@@ -81,6 +95,7 @@ pub(super) fn fill_schools(
     species: Res<Assets<Species>>,
     mut waiting: Local<Vec<Entity>>,
     mut filling: Local<Vec<Filling>>,
+    mut around: Local<Option<Around>>,
 ) {
     let mut due: Vec<Entity> = schools
         .iter()
@@ -116,22 +131,17 @@ pub(super) fn fill_schools(
     }
     filling.retain(|f| schools.contains(f.school));
     if filling.is_empty() {
+        *around = None;
         return;
     }
     filling.sort_unstable_by_key(|f| f.school);
-    // Everyone who stays: members of the schools not started again (those of a school
-    // still filling included).
-    let mut kept: Vec<(Vec3, f32)> = others
-        .iter()
-        .filter(|(.., of)| !restarted.contains(&of.0))
-        .map(|(t, s, _)| (t.translation, s.radius))
-        .collect();
-    kept.sort_by(super::by_position);
-    // Everyone kept or placed, in a grid to find the near ones: a school of thousands is
-    // placed in milliseconds, not in minutes.
-    let coming: Vec<Entity> = filling.iter().map(|f| f.school).collect();
-    let mut grid = Neighbours::of(&kept, cube_for(&kept, &coming, &schools, &species));
-    let mut widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
+    if around.is_none() || !restarted.is_empty() {
+        let coming: Vec<Entity> = filling.iter().map(|f| f.school).collect();
+        *around = Some(Around::gather(&others, &restarted, |kept| {
+            cube_for(kept, &coming, &schools, &species)
+        }));
+    }
+    let Around { kept, grid, widest } = around.get_or_insert_default();
     let mut budget = MEMBERS_PER_FRAME;
     for fill in filling.iter_mut() {
         let Ok((entity, spec, transform, _)) = schools.get(fill.school) else {
@@ -153,7 +163,7 @@ pub(super) fn fill_schools(
                 transform,
                 spacing,
                 |p, spacing| {
-                    !grid.any_around(p, spacing * (radius + widest), |i| {
+                    !grid.any_around(p, spacing * (radius + *widest), |i| {
                         let (q, rq) = kept[i];
                         // Too near, or not comparable (a non-finite place is never clear).
                         let (d, apart) = (p.distance(q), spacing * (radius + rq));
@@ -163,7 +173,7 @@ pub(super) fn fill_schools(
             );
             grid.insert(kept.len(), at);
             kept.push((at, radius));
-            widest = widest.max(radius);
+            *widest = widest.max(radius);
             // Mostly upright in the school's frame, leaning up to ~25 degrees.
             let lean = Quat::from_rotation_y(std::f32::consts::TAU * rng.unit())
                 * Quat::from_rotation_x(0.45 * rng.unit());
@@ -184,6 +194,27 @@ pub(super) fn fill_schools(
             .get(f.school)
             .is_ok_and(|(_, spec, ..)| f.placed < spec.count)
     });
+}
+
+impl Around {
+    /// Everyone who stays: members of the schools not started again (those of a school
+    /// still filling included), in a grid of cubes of `cube(kept)` to find the near ones:
+    /// a school of thousands is placed in milliseconds, not in minutes.
+    fn gather(
+        others: &Query<(&Transform, &Swimmer, &MemberOf)>,
+        restarted: &[Entity],
+        cube: impl FnOnce(&[(Vec3, f32)]) -> f32,
+    ) -> Self {
+        let mut kept: Vec<(Vec3, f32)> = others
+            .iter()
+            .filter(|(.., of)| !restarted.contains(&of.0))
+            .map(|(t, s, _)| (t.translation, s.radius))
+            .collect();
+        kept.sort_by(super::by_position);
+        let grid = Neighbours::of(&kept, cube(&kept));
+        let widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
+        Self { kept, grid, widest }
+    }
 }
 
 /// The grid's cube: twice the widest reach of anyone kept or about to be placed, so that

@@ -3,7 +3,7 @@
 
 use super::*;
 use bevy::ecs::hierarchy::ChildOf;
-use bevy_jellyfish::plugin::{JellyfishSchool, SchoolMembers, SwimMotion};
+use bevy_jellyfish::plugin::{JellyfishSchool, MemberOf, SchoolMembers, SwimMotion};
 
 fn school_app(count: usize, half: Vec3) -> (App, Entity) {
     let mut app = app();
@@ -132,10 +132,18 @@ fn a_changed_school_is_spawned_again() {
 /// A school larger than a frame's share fills a few dozen members a frame, so no frame
 /// places and spawns thousands; every member is still apart from all the others and in
 /// its box, and it is the same school in every run.
+/// Where each member of a school was spawned, in spawn order.
+#[derive(Resource, Default)]
+struct SpawnedAt(Vec<Vec3>);
+
 #[test]
 fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
     let half = Vec3::new(10.0, 5.0, 10.0);
-    let fill = || {
+    // `scatter`: after each frame every member so far is moved far out of the box, as
+    // if it had swum there; a fill places against where members were placed, so the
+    // places must not change (with the frame rate deciding how far they swim between
+    // frames, they would otherwise depend on it).
+    let fill = |scatter: bool| {
         let (mut app, school) = school_app(150, half);
         // All far: no slices to build, only the species' recorded cycle.
         app.world_mut().resource_mut::<JellyfishSettings>().detail = DetailLevels {
@@ -143,19 +151,32 @@ fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
             mid: 0,
             ..default()
         };
+        app.init_resource::<SpawnedAt>().add_observer(
+            |add: On<Add, MemberOf>, places: Query<&Transform>, mut at: ResMut<SpawnedAt>| {
+                at.0.push(places.get(add.entity).unwrap().translation);
+            },
+        );
         let mut counts: Vec<usize> = Vec::new();
         while counts.last() != Some(&150) {
             assert!(counts.len() < 20, "members after each frame: {counts:?}");
             app.update();
             counts.push(members(&app, school).len());
+            if scatter {
+                for m in members(&app, school) {
+                    app.world_mut()
+                        .get_mut::<Transform>(m)
+                        .unwrap()
+                        .translation
+                        .x += 1000.0;
+                }
+            }
         }
-        let places: Vec<Vec3> = members(&app, school)
-            .iter()
-            .map(|m| app.world().get::<Transform>(*m).unwrap().translation)
-            .collect();
-        (counts, places)
+        (
+            counts,
+            std::mem::take(&mut app.world_mut().resource_mut::<SpawnedAt>().0),
+        )
     };
-    let (counts, places) = fill();
+    let (counts, places) = fill(false);
     println!("members after each frame: {counts:?}");
     let most = std::iter::once(counts[0])
         .chain(counts.windows(2).map(|w| w[1] - w[0]))
@@ -169,6 +190,7 @@ fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
         counts.iter().filter(|&&n| n > 0).count() >= 3,
         "150 members in at least three frames: {counts:?}"
     );
+    assert_eq!(places.len(), 150);
     let diameter = species().diameter * 20.0;
     for (i, a) in places.iter().enumerate() {
         assert!(inside(*a, half, 0.0), "{a} outside");
@@ -176,5 +198,10 @@ fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
             assert!(a.distance(*b) >= 1.15 * diameter, "{a} and {b} overlap");
         }
     }
-    assert_eq!(fill().1, places, "the same school every run");
+    assert_eq!(fill(false).1, places, "the same school every run");
+    assert_eq!(
+        fill(true).1,
+        places,
+        "placed against where the first members were placed, not where they went"
+    );
 }
