@@ -2,6 +2,7 @@
 
 use crate::species::Species;
 use glam::Vec2;
+use std::sync::{Arc, Mutex};
 
 /// Mesoglea thickness at arc fraction `s` of the bell (0 at the apex, 1 at the margin), m.
 ///
@@ -14,9 +15,52 @@ pub(crate) fn mesoglea_thickness(species: &Species, s: f32) -> f32 {
 
 /// The rest subumbrella: a half-ellipse of the species' diameter and height, aperture
 /// centre at the origin, apex at +y, points at equal arc length about `h/2` apart.
+///
+/// The last few outlines are kept ([`Outlines`]): an edit of a species rebuilds the body
+/// of each of its live slices, and jellyfish moving between tiers build new ones, mostly
+/// with an outline already made.
 pub(crate) fn rest_outline(species: &Species, h: f32) -> Vec<Vec2> {
-    let a = 0.5 * species.diameter;
-    let b = species.height;
+    let key = [species.diameter, species.height, h].map(f32::to_bits);
+    if let Some(known) = OUTLINES.find(key) {
+        return known.to_vec();
+    }
+    let made = make_rest_outline(species.diameter, species.height, h);
+    OUTLINES.keep(key, &made);
+    made
+}
+
+/// The outlines made last, by the bits of the diameter, height and spacing they were made
+/// for (all they depend on), newest first: the same points, bit for bit, without the two
+/// thousand sines and cosines of making them (half of rebuilding a body).
+struct Outlines(Mutex<Vec<Kept>>);
+
+/// An outline, by the bits of its diameter, height and spacing.
+type Kept = ([u32; 3], Arc<[Vec2]>);
+
+/// A few species, a few grids each.
+const OUTLINES_KEPT: usize = 16;
+
+static OUTLINES: Outlines = Outlines(Mutex::new(Vec::new()));
+
+impl Outlines {
+    fn find(&self, key: [u32; 3]) -> Option<Arc<[Vec2]>> {
+        let kept = self.0.lock().ok()?;
+        kept.iter().find(|(k, _)| *k == key).map(|(_, o)| o.clone())
+    }
+
+    fn keep(&self, key: [u32; 3], outline: &[Vec2]) {
+        if let Ok(mut kept) = self.0.lock() {
+            kept.retain(|(k, _)| *k != key);
+            kept.insert(0, (key, Arc::from(outline)));
+            kept.truncate(OUTLINES_KEPT);
+        }
+    }
+}
+
+/// [`rest_outline`] for a bell of `diameter` and `height`, points about `h/2` apart.
+fn make_rest_outline(diameter: f32, height: f32, h: f32) -> Vec<Vec2> {
+    let a = 0.5 * diameter;
+    let b = height;
     // Dense polyline from the left margin (θ = π) over the apex to the right margin.
     const DENSE: usize = 2000;
     let dense: Vec<Vec2> = (0..=DENSE)
@@ -72,6 +116,22 @@ mod tests {
         // About half a cell apart.
         let spacing = (o[1] - o[0]).length();
         assert!(spacing > 0.0015 && spacing < 0.0025, "{spacing}");
+    }
+
+    /// A kept outline is the one made afresh, bit for bit, for every species and spacing
+    /// asked for (more than are kept, so some are made again).
+    #[test]
+    fn a_kept_outline_is_the_one_made() {
+        let species = [Species::aurelia(), Species::aequorea(), Species::sarsia()];
+        for round in 0..2 {
+            for s in &species {
+                for k in 0..8 {
+                    let h = 0.0005 * (1.0 + k as f32);
+                    let made = make_rest_outline(s.diameter, s.height, h);
+                    assert_eq!(rest_outline(s, h), made, "round {round}, h {h}");
+                }
+            }
+        }
     }
 
     #[test]
