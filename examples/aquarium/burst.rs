@@ -143,11 +143,20 @@ impl Frames {
         let over = self.ms.iter().filter(|&&ms| ms > p99).count();
         let mean = self.ms.iter().sum::<f64>() / self.ms.len().max(1) as f64;
         let data = self.mesh_mb.iter().copied().fold(0.0, f64::max);
+        // Where an edit or a spawn lands: its own frame, and the ones just after.
+        let first: Vec<String> = self
+            .ms
+            .iter()
+            .take(3)
+            .map(|ms| format!("{ms:.2}"))
+            .collect();
         println!(
             "{what}: {} frames, mean {mean:.2} ms, worst {worst:.2} ms (frame {at}: CPU \
              simulation {simulation:.1} ms, meshing {meshing:.1} ms, {changes} tier changes), \
-             {over} over the p99 ({p99:.2} ms){}; at most {data:.2} MB of mesh data in a frame",
+             frames 0-2 {} ms, {over} over the p99 ({p99:.2} ms){}; at most {data:.2} MB of \
+             mesh data in a frame",
             self.ms.len(),
+            first.join(", "),
             runs(self.ms.iter().map(|&ms| ms > p99)),
         );
     }
