@@ -13,6 +13,7 @@
 mod depth;
 mod elements;
 mod implicit;
+mod kept;
 mod network;
 mod outline;
 mod rest_shape;
@@ -113,7 +114,14 @@ impl Body {
     /// In the axisymmetric geometry the axis is the vertical through `origin`, every point
     /// a ring about it, and the muscle a hoop of each ring. Either is mirror-symmetric
     /// about it and solved on its half (see [`Body::set_mirror_symmetric`]).
+    ///
+    /// The last few bodies built are kept (`kept`): the same three give a copy of one.
     pub(crate) fn new(species: &Species, origin: Vec2, h: f32) -> Self {
+        kept::body(species, origin, h)
+    }
+
+    /// [`Body::new`], built part by part.
+    fn build(species: &Species, origin: Vec2, h: f32) -> Self {
         let outline = rest_outline(species, h * species.kernel_stretch_at(h));
         let bell_len = outline.len();
         let spacing = (outline[1] - outline[0]).length();

@@ -442,6 +442,12 @@ impl SliceSim {
     /// distance and world position.
     pub fn set_species(&mut self, species: &Species) -> Result<(), SpeciesError> {
         species.validate()?;
+        self.set_valid_species(species)
+    }
+
+    /// [`Self::set_species`] for a species already validated (an edit reaching a hundred
+    /// slices is checked once).
+    pub(crate) fn set_valid_species(&mut self, species: &Species) -> Result<(), SpeciesError> {
         let reshaped = species.grid_resolution != self.species.grid_resolution
             || species.diameter != self.species.diameter
             || species.height != self.species.height
