@@ -164,7 +164,7 @@ impl Pacer {
 
 /// FNV-1a over every jellyfish's seed, tier, phase and pose, to the bit, in an order that
 /// does not depend on how entities were allocated: the same for any thread count.
-fn state_hash(app: &mut App) -> u64 {
+pub fn state_hash(app: &mut App) -> u64 {
     let mut q = app.world_mut().query::<(&JellyfishSlice, &Transform)>();
     let mut states: Vec<Vec<u32>> = q
         .iter(app.world())

@@ -94,6 +94,10 @@ pub fn edit(app: &mut App, p99: f64, fps: f64, pacer: &mut Pacer) -> Result<(), 
         ),
         p99,
     );
+    println!(
+        "state hash after the edit: {:016x}",
+        crate::bench::state_hash(app)
+    );
     Ok(())
 }
 

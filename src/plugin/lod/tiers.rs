@@ -196,6 +196,10 @@ fn move_to(
     tier: Tier,
     cache: Arc<CycleCache>,
 ) {
+    // It leaves its tier as the edited species it is.
+    if slice.edit.waiting() {
+        slice.take_edit(history, motion);
+    }
     let Some(clock) = slice.clock().cloned() else {
         return;
     };

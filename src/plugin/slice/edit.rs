@@ -2,7 +2,7 @@
 
 use super::JellyfishSlice;
 use super::pool::SpeciesPool;
-use super::tier::tier_species;
+use super::tier::{Tier, tier_species};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::jellyfish::Jellyfish;
 use crate::plugin::species_asset::{Refusals, SpeciesRejected};
@@ -20,9 +20,9 @@ type SpeciesChanged = Or<(Changed<Jellyfish>, AssetChanged<Jellyfish>)>;
 #[derive(Message, Clone, Debug)]
 pub(crate) struct SliceEdited(pub Species);
 
-/// Applies edited species assets and a jellyfish's new species handle to living slices
-/// through [`SliceSim::set_species`](crate::sim::SliceSim::set_species), which refuses an invalid species before changing
-/// anything. A far jellyfish wants the new species' recorded cycle (the levels of detail
+/// Applies edited species assets and a jellyfish's new species handle to living slices:
+/// an invalid species is refused before anything changes; a live slice takes a valid one
+/// through [`SliceSim::set_species`](crate::sim::SliceSim::set_species) when it next steps. A far jellyfish wants the new species' recorded cycle (the levels of detail
 /// switch it once recorded). Only jellyfish whose species asset or handle changed are
 /// visited (`AssetChanged`), not every one each frame.
 pub(super) fn apply_edits(
@@ -41,9 +41,12 @@ pub(super) fn apply_edits(
     mut rejected: MessageWriter<SpeciesRejected>,
     mut pool: ResMut<SpeciesPool>,
 ) {
-    // Each edited species is checked against its limits once, not once for each of the
-    // hundreds of jellyfish it reaches.
-    let mut checked: HashMap<AssetId<Species>, Result<(), SpeciesError>> = HashMap::default();
+    // Each edited species is checked against its limits once (and its mid tier's variant
+    // once), not once for each of the hundreds of jellyfish it reaches.
+    let mut checked: HashMap<(AssetId<Species>, Tier), Result<(), SpeciesError>> =
+        HashMap::default();
+    // The cycles wanted: one for each species edited, however many live slices it reaches.
+    let mut announced: Vec<AssetId<Species>> = Vec::new();
     for (jelly, mut slice, mut history, mut motion) in &mut jellyfish {
         let id = jelly.species.id();
         let Some(simulated) = species.get(id) else {
@@ -53,12 +56,25 @@ pub(super) fn apply_edits(
         if !slice.started() || *simulated == *slice.species {
             continue;
         }
-        let valid = checked.entry(id).or_insert_with(|| simulated.validate());
-        match valid
-            .clone()
-            .and_then(|()| apply(slice, &mut history, &mut motion, simulated, &mut edited))
-        {
-            Ok(()) => slice.species = pool.intern(simulated),
+        let valid = checked
+            .entry((id, slice.tier))
+            .or_insert_with(|| {
+                simulated.validate()?;
+                match slice.tier {
+                    Tier::Mid => tier_species(simulated, Tier::Mid).validate(),
+                    _ => Ok(()),
+                }
+            })
+            .clone();
+        match valid {
+            Ok(()) => {
+                if slice.sim.is_some() && !announced.contains(&id) {
+                    announced.push(id);
+                    edited.write(SliceEdited(simulated.clone()));
+                }
+                apply(slice, &mut history, &mut motion, simulated);
+                slice.species = pool.intern(simulated);
+            }
             Err(error) => {
                 if refusals.say(id, &error, &mut rejected) {
                     error!(
@@ -70,35 +86,27 @@ pub(super) fn apply_edits(
     }
 }
 
-/// One jellyfish's slice (or replay) takes `species`, validated, at its tier.
+/// One jellyfish's slice (or replay) takes `species`, validated, at its tier. A live
+/// slice takes it when it is next used ([`PendingEdit`](super::PendingEdit)), in
+/// parallel with the others; its cycle is wanted for when it moves away, recorded a few
+/// steps a frame from now (`SliceEdited`).
 fn apply(
     slice: &mut JellyfishSlice,
     history: &mut SliceHistory,
     motion: &mut SwimMotion,
     species: &Species,
-    edited: &mut MessageWriter<SliceEdited>,
-) -> Result<(), SpeciesError> {
+) {
     let simulated = tier_species(species, slice.tier);
     slice.anchor = None;
-    if let Some(sim) = slice.sim.as_mut() {
-        // Its cycle, for when it moves away: recorded a few steps a frame from now.
-        edited.write(SliceEdited(species.clone()));
-        let clock = sim.clock().clone();
-        sim.set_species(&simulated)?;
-        let topology = history
-            .newest()
-            .is_none_or(|s| s.shape().bell.len() != sim.view().bell.len());
-        // A new shape or a new step (the stored times are the old clock's).
-        if topology || *sim.clock() != clock {
-            history.restart(sim, motion.pose);
+    if slice.sim.is_some() {
+        // One left and not yet taken (the slices did not step since) is taken first.
+        if slice.edit.waiting() {
+            slice.take_edit(history, motion);
         }
-        slice.rest_bell = sim.view().rest_bell.to_vec();
-        motion.swum = sim.swim_distance();
-        slice.show(history);
+        slice.edit.leave(simulated);
     } else if let Some(replay) = slice.replay.as_mut() {
         replay.wanted = Some(simulated);
     } else if let Some(clock) = slice.pending.as_mut() {
         *clock = clock.retimed(simulated.period(), SliceSim::steps_per_cycle(&simulated));
     }
-    Ok(())
 }

@@ -19,7 +19,7 @@ pub(crate) use tier::{LiveSlice, Replay, tier_species};
 use super::interpolation::SliceHistory;
 use super::jellyfish::Jellyfish;
 use super::schedule::JellyfishSystems;
-use super::swimming::Pose;
+use super::swimming::{Pose, SwimMotion};
 use crate::sim::SliceSim;
 use crate::sim::clock::FixedClock;
 use crate::species::{Species, SpeciesError};
@@ -58,6 +58,47 @@ impl Plugin for SlicePlugin {
     }
 }
 
+/// A species edit on its way to a live slice. `apply_edits` only leaves it here; the slice
+/// takes it where it is next used (stepped, moved between tiers, startled), so that the
+/// hundred slices an edit reaches take it in parallel, while they step. Nothing reads a
+/// live slice in between, so the result is the same bits as taking it at once.
+#[derive(Default)]
+pub(crate) struct PendingEdit {
+    /// The tier's variant of the edited species, validated.
+    species: Option<Species>,
+    /// The clock before the edit taken last, until the history has seen that edit.
+    unseen: Option<FixedClock>,
+}
+
+impl PendingEdit {
+    /// Leaves `species` for the slice, which has taken any edit left before
+    /// ([`JellyfishSlice::take_edit`]).
+    pub(crate) fn leave(&mut self, species: Species) {
+        debug_assert!(!self.waiting(), "an edit left before was not taken");
+        self.species = Some(species);
+    }
+
+    /// Whether anything is left for the slice or its history.
+    pub(crate) fn waiting(&self) -> bool {
+        self.species.is_some() || self.unseen.is_some()
+    }
+
+    /// The slice takes the edit left for it.
+    fn take_into(&mut self, sim: Option<&mut SliceSim>) {
+        let (Some(species), Some(sim)) = (self.species.take(), sim) else {
+            return;
+        };
+        let before = sim.clock().clone();
+        match sim.set_valid_species(&species) {
+            Ok(()) => {
+                self.unseen.get_or_insert(before);
+            }
+            // Validated when it was left: only a failure to build the slice lands here.
+            Err(error) => error!("a live slice could not take its species edit: {error}"),
+        }
+    }
+}
+
 /// The simulated slice (or, far from the camera, its species' recorded stroke cycle).
 ///
 /// Empty until the species asset has loaded.
@@ -70,6 +111,10 @@ pub struct JellyfishSlice {
     /// The replayed cycle (far tier).
     #[reflect(ignore)]
     pub(crate) replay: Option<Replay>,
+    /// A species edit the live slice has not taken yet (its tier's variant, validated),
+    /// and the clock it had before the last one it took that its history has not seen.
+    #[reflect(ignore)]
+    pub(crate) edit: PendingEdit,
     /// Started this frame, neither slice nor replay built yet: its clock, at its phase.
     /// The levels of detail start it in the tier they give it (a far one never builds a
     /// slice); one still waiting when the slices step starts near.
@@ -99,7 +144,8 @@ pub struct JellyfishSlice {
 impl JellyfishSlice {
     /// The live slice, once its species has loaded and while it is near or mid (for debug
     /// overlays and tools; built when the slices first step it); `None` while it replays
-    /// its species' cycle (far).
+    /// its species' cycle (far). A species edit reaches it when the slices step
+    /// (`JellyfishSystems::StepSlices`), in the frame of the edit.
     pub fn sim(&self) -> Option<&SliceSim> {
         self.sim.as_ref()
     }
@@ -140,6 +186,8 @@ impl JellyfishSlice {
     /// (`SliceSim::escape`: deeper, quicker strokes); far, its replay plays the recorded
     /// cycle at the escape's quicker rhythm.
     pub fn escape(&mut self, strength: f32) {
+        // The escape's rhythm is the edited species'.
+        self.edit.take_into(self.sim.as_mut());
         if let Some(sim) = self.sim.as_mut() {
             sim.escape(strength);
         } else if let Some(replay) = self.replay.as_mut() {
@@ -197,6 +245,7 @@ impl JellyfishSlice {
         self.pending = Some(clock);
         self.sim = None;
         self.replay = None;
+        self.edit = PendingEdit::default();
         self.tier = Tier::Near;
         self.anchor = None;
         self.species = species;
@@ -222,6 +271,25 @@ impl JellyfishSlice {
         self.sim = Some(sim);
         self.show(history);
         Ok(())
+    }
+
+    /// Gives the live slice the species edit waiting for it, if any, and restarts its
+    /// history where the edit changed its shape or its step.
+    pub(crate) fn take_edit(&mut self, history: &mut SliceHistory, motion: &mut SwimMotion) {
+        self.edit.take_into(self.sim.as_mut());
+        let (Some(before), Some(sim)) = (self.edit.unseen.take(), self.sim.as_ref()) else {
+            return;
+        };
+        let topology = history
+            .newest()
+            .is_none_or(|s| s.shape().bell.len() != sim.view().bell.len());
+        // A new shape or a new step (the stored times are the old clock's).
+        if topology || *sim.clock() != before {
+            history.restart(sim, motion.pose);
+        }
+        self.rest_bell = sim.view().rest_bell.to_vec();
+        motion.swum = sim.swim_distance();
+        self.show(history);
     }
 
     /// Tells the history which time the frame shows, and keeps what its newest step says.

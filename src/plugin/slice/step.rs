@@ -101,6 +101,10 @@ fn step_one(
         before,
     } = *at;
     let slice = &mut *slice;
+    // A species edit left for the live slice this frame is taken here, on every thread.
+    if slice.edit.waiting() {
+        slice.take_edit(&mut history, &mut motion);
+    }
     // Started this frame and left near: its slice is built now.
     if let Err(error) = slice.build_pending(&mut history, motion.pose) {
         error!("jellyfish {entity}: its slice could not be built: {error}");

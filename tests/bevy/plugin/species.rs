@@ -50,6 +50,52 @@ fn a_species_edited_at_run_time_reaches_living_jellyfish() {
     assert!(umbrella.iter().flatten().all(|x| x.is_finite()));
 }
 
+/// A live slice takes an edit when the slices step, in parallel; a game's system that
+/// startles it before then (in `Update`) startles the edited species, and after the
+/// frame the slice is the edited one.
+#[test]
+fn an_edit_reaches_a_slice_startled_before_it_steps() {
+    #[derive(Resource, Default)]
+    struct Startle(Option<Entity>, Vec<(f32, f32)>);
+    fn startle(mut s: ResMut<Startle>, mut slices: Query<&mut JellyfishSlice>) {
+        let Some(mut slice) = s.0.take().and_then(|e| slices.get_mut(e).ok()) else {
+            return;
+        };
+        slice.escape(1.0);
+        let given = slice.species().unwrap().contraction_frequency;
+        let startled = slice.sim().unwrap().species().contraction_frequency;
+        s.1.push((given, startled));
+    }
+    let (mut app, h, e) = one_jellyfish();
+    app.init_resource::<Startle>().add_systems(Update, startle);
+    run(&mut app, 30);
+    app.world_mut()
+        .resource_mut::<Assets<Species>>()
+        .get_mut(&h)
+        .unwrap()
+        .contraction_frequency = 1.1;
+    // The frames until the edit reaches the jellyfish (the asset's change is seen the
+    // frame after it), each startling it first.
+    for _ in 0..3 {
+        app.world_mut().resource_mut::<Startle>().0 = Some(e);
+        run(&mut app, 1);
+    }
+    // Every frame, the edit given is the one startled, the edit's own frame included.
+    let seen = &app.world().resource::<Startle>().1;
+    assert!(
+        seen.iter().all(|(given, startled)| given == startled),
+        "{seen:?}"
+    );
+    assert!(
+        seen.iter().any(|s| s.0 != 1.1) && seen.last() == Some(&(1.1, 1.1)),
+        "{seen:?}"
+    );
+    let sl = slice(&app, e);
+    assert!(sl.escaping());
+    assert_eq!(sl.sim().unwrap().species().contraction_frequency, 1.1);
+    assert_eq!(sl.species().unwrap().contraction_frequency, 1.1);
+}
+
 #[test]
 fn settings_change_only_the_drawing() {
     let (mut app, _, e) = one_jellyfish();
