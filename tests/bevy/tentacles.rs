@@ -445,6 +445,14 @@ fn far_jellyfish_trail_their_fringe_in_a_shear() {
         drawn < reference - 0.3,
         "the fringe not swept downstream: x {drawn:.2} against the slice's {reference:.2}"
     );
+    // Its guides hang from its cycle's first step (the bell at rest), whatever step it
+    // shows when its trailing is worked out again: their shape is made once, and stays
+    // while it strokes.
+    app.world_mut().entity_mut(e).remove::<Resting>();
+    let hung = guides(&app, e).reference().to_vec();
+    run(&mut app, e, 40, Some(Vec3::ZERO));
+    assert!(!hung.is_empty());
+    assert_eq!(guides(&app, e).reference(), &hung[..], "hung anew");
     // Its oral arms, a few pixels mostly within its bell, hang as its replayed cycle
     // draws them.
     let g = guides(&app, e);

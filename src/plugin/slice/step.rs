@@ -11,7 +11,7 @@ use super::events::{Lifecycle, LifecycleQueue};
 use super::tier::{LiveSlice, Replay};
 use crate::plugin::interpolation::SliceHistory;
 use crate::plugin::swimming::{
-    GuideFrame, Pose, Resting, Steering, Stroke, SwimMotion, TentacleGuides, Travel,
+    FarTow, GuideFrame, Pose, Resting, Steering, Stroke, SwimMotion, TentacleGuides, Travel,
 };
 use crate::plugin::timings::{BatchClock, JellyfishTimings, Spent};
 use crate::plugin::water::AmbientWater;
@@ -218,7 +218,7 @@ impl Step<'_> {
             }
         } else if let Some(replay) = slice.replay.as_mut() {
             history.prefetch(replay.clock.steps_due_at(self.until).min(4) as usize);
-            replay.advance_until(self.until, resting, |replay: &Replay, cycle| {
+            replay.advance_until(self.until, resting, |replay: &Replay| {
                 let clock = &replay.clock;
                 let stroke = Stroke {
                     species: replay.cache.species(),
@@ -232,10 +232,12 @@ impl Step<'_> {
                 self.travel.step_far(&stroke, motion);
                 stepped += stroke.step;
                 if let Some(guides) = guides.as_deref_mut() {
+                    // Hung from the cycle's first step, the bell at rest.
+                    let rest = replay.cache.frame(0);
                     let shape = StepShape {
-                        bell: &cycle.bell,
-                        tentacles: [&cycle.tentacles[0], &cycle.tentacles[1]],
-                        oral_arms: [&cycle.oral_arms[0], &cycle.oral_arms[1]],
+                        bell: &rest.bell,
+                        tentacles: [&rest.tentacles[0], &rest.tentacles[1]],
+                        oral_arms: [&rest.oral_arms[0], &rest.oral_arms[1]],
                         centroid: Vec2::ZERO,
                     };
                     // Towed at the recorded stroke's mean speed (nothing while resting).
@@ -244,9 +246,13 @@ impl Step<'_> {
                     } else {
                         replay.cache.swim_per_cycle() / stroke.species.period()
                     };
+                    let far = FarTow {
+                        mean,
+                        cycle: &replay.cache,
+                    };
                     guides.step(
                         &self.guide_frame(&stroke, surge, before, motion, shape),
-                        Some(mean),
+                        Some(far),
                     );
                 }
                 let (time, swim) = (clock.time(), replay.swim as f32);

@@ -3,7 +3,7 @@
 //! jellyfish gets is the levels of detail's choice (`plugin::lod`).
 
 use crate::sim::clock::FixedClock;
-use crate::sim::cycle::{CycleCache, CycleFrame};
+use crate::sim::cycle::CycleCache;
 use crate::sim::escape::Escape;
 use crate::species::Species;
 use bevy::prelude::*;
@@ -54,34 +54,28 @@ pub(crate) struct Replay {
 
 impl Replay {
     /// Sets the time added to `added` seconds and plays the steps that pays for;
-    /// `after_step` sees each frame. Resting holds the frame where the stroke stopped and
+    /// `after_step` sees the replay after each. Resting holds the frame where the stroke stopped and
     /// swims nowhere.
-    pub fn advance_until(
-        &mut self,
-        added: f64,
-        resting: bool,
-        mut after_step: impl FnMut(&Self, &CycleFrame),
-    ) {
-        let cache = self.cache.clone();
+    pub fn advance_until(&mut self, added: f64, resting: bool, mut after_step: impl FnMut(&Self)) {
         for _ in 0..self.clock.add_until(added) {
             if resting {
                 self.clock.tick_held();
-                after_step(self, cache.frame(self.index()));
+                after_step(self);
                 continue;
             }
             // A quicker rhythm plays two recorded steps in some fixed steps, and swims both.
-            let species = cache.species();
+            let species = self.cache.species();
             let quick = self.escape.as_mut().map_or(1, |e| e.step(species));
             if self.escape.as_ref().is_some_and(Escape::done) {
                 self.escape = None;
             }
             self.clock.tick();
-            self.swim += cache.frame(self.index()).surge as f64;
+            self.swim += self.cache.frame(self.index()).surge as f64;
             for _ in 1..quick {
                 self.clock.hurry();
-                self.swim += cache.frame(self.index()).surge as f64;
+                self.swim += self.cache.frame(self.index()).surge as f64;
             }
-            after_step(self, cache.frame(self.index()));
+            after_step(self);
         }
     }
 

@@ -14,9 +14,10 @@ use super::oral_guides::OralGuides;
 use super::{FAR_REFRESH, Pose};
 use crate::shape::packed;
 use crate::shape::tentacles::guide_reference;
+use crate::sim::cycle::CycleCache;
 use crate::sim::guides::{Filament, GUIDE_NODES, GuideChains, GuideStep, Solid, Trail};
 use bevy::prelude::*;
-use std::sync::Arc;
+use std::sync::{Arc, Weak};
 
 /// A jellyfish's guide chains: where its fringe trails in the water around it. Read only;
 /// the plugin steps it with the slice.
@@ -43,6 +44,16 @@ pub struct TentacleGuides {
     thin_guides: Option<usize>,
     /// Where the thinned trail is worked out before it is shared.
     thinning: Vec<Vec3>,
+    /// The recorded cycle whose first step `reference` and `solid` were made from, while
+    /// far (a far jellyfish's guides hang from it); dangling otherwise.
+    hung_from: Weak<CycleCache>,
+}
+
+/// A far jellyfish's guides: towed at the recorded stroke's `mean` speed, m/s, and hung
+/// where the first step of its `cycle` (the bell at rest) draws them.
+pub(crate) struct FarTow<'a> {
+    pub mean: f32,
+    pub cycle: &'a Arc<CycleCache>,
 }
 
 impl TentacleGuides {
@@ -111,13 +122,15 @@ impl TentacleGuides {
     }
 
     /// Steps the guides by one slice step: live (the filament's dynamics) or, for a
-    /// replayed far jellyfish towed at `steady` m/s on average, its steady trailing.
-    pub(crate) fn step(&mut self, f: &GuideFrame, steady: Option<f32>) {
+    /// replayed far jellyfish, its steady trailing (`far`; `f` is then its cycle's first
+    /// step).
+    pub(crate) fn step(&mut self, f: &GuideFrame, far: Option<FarTow>) {
         let guides = f.species.guide_count();
         if guides != self.chains.guides() || f.species.tentacle_length != self.length {
             self.chains = GuideChains::new(guides);
             self.length = f.species.tentacle_length;
             self.thin_guides = None;
+            self.hung_from = Weak::new();
         }
         self.oral.fit(f.species);
         if guides == 0 && self.oral.tubes() == 0 {
@@ -125,9 +138,10 @@ impl TentacleGuides {
             return;
         }
         let towing = (f.surge / f.dt).max(0.0);
-        match steady {
+        match far {
             None => {
                 self.thin_guides = None;
+                self.hung_from = Weak::new();
                 // The body turned in the step; the water holds the nodes where they were.
                 let turn = (f.before.rotation.inverse() * f.after.rotation).normalize();
                 self.chains.turn_frame(turn);
@@ -145,16 +159,17 @@ impl TentacleGuides {
                 });
                 self.oral.step(f, towing, &self.solid);
             }
-            Some(mean) => self.trail_steadily(f, mean),
+            Some(far) => self.trail_steadily(f, far),
         }
     }
 
     /// A far jellyfish's steady trailing in the water halfway down each guide (where the
     /// species hangs it at rest), towed at `mean` m/s: worked out every [`FAR_REFRESH`]
-    /// seconds, a whole number of steps (the current changes slowly; the offsets ride on the replayed shape between,
-    /// turning with the body), and not at all where the water there would move a tip by
-    /// less than a hundredth of a tentacle.
-    fn trail_steadily(&mut self, f: &GuideFrame, mean: f32) {
+    /// seconds, a whole number of steps (the current changes slowly; the offsets ride on
+    /// the replayed shape between, turning with the body), and not at all where the water
+    /// there would move a tip by less than a hundredth of a tentacle. The guides hang
+    /// from the cycle's first step, so their shape is made once for each cycle.
+    fn trail_steadily(&mut self, f: &GuideFrame, FarTow { mean, cycle }: FarTow) {
         // A far jellyfish's oral arms, a few pixels mostly within its bell, hang as the
         // replayed cycle draws them.
         self.oral.rest();
@@ -178,14 +193,14 @@ impl TentacleGuides {
         self.halfway.clear();
         let halfway = (0..guides).map(|g| relative_water(f, carrying, probe(g)));
         self.halfway.extend(halfway);
+        if !std::ptr::eq(self.hung_from.as_ptr(), Arc::as_ptr(cycle)) || self.reference.is_empty() {
+            self.refresh_shape(f);
+            self.hung_from = Arc::downgrade(cycle);
+        }
         if self.halfway.iter().all(|w| w.length() < negligible) {
             self.chains.reset();
-            if self.reference.is_empty() {
-                self.refresh_shape(f);
-            }
             return;
         }
-        self.refresh_shape(f);
         self.chains
             .steady(&self.reference, &self.halfway, mean, &self.solid);
     }

@@ -10,6 +10,7 @@ mod pose;
 mod steering;
 mod travel;
 
+pub(crate) use fringe::FarTow;
 pub use fringe::TentacleGuides;
 pub(crate) use guide_frame::GuideFrame;
 pub use pose::Pose;
