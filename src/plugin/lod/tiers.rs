@@ -63,16 +63,27 @@ pub(super) fn change_tiers(
             edits.push(species.clone());
         }
     }
-    // Far jellyfish of an edited species take its cycle once it is recorded.
+    // Far jellyfish of an edited species take its cycle once it is recorded: asked for
+    // once a frame for each species wanted, not once for each of its far jellyfish.
     caches.collect();
+    let mut asked: Vec<(Species, Option<Arc<CycleCache>>)> = Vec::new();
     for (_, mut slice, mut history, ..) in &mut jellyfish {
-        let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.clone()) else {
+        let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.as_ref()) else {
             continue;
         };
-        match caches.request(&wanted) {
-            Some(cache) => switch_cycle(&mut slice, &mut history, cache),
-            None if !edits.contains(&wanted) => edits.push(wanted),
-            None => {}
+        let answer = match asked.iter().find(|(s, _)| s == wanted) {
+            Some((_, answer)) => answer.clone(),
+            None => {
+                let answer = caches.request(wanted);
+                if answer.is_none() && !edits.contains(wanted) {
+                    edits.push(wanted.clone());
+                }
+                asked.push((wanted.clone(), answer.clone()));
+                answer
+            }
+        };
+        if let Some(cache) = answer {
+            switch_cycle(&mut slice, &mut history, cache);
         }
     }
     for species in &edits {
