@@ -22,7 +22,8 @@ pub(crate) struct SliceEdited(pub Species);
 
 /// Applies edited species assets and a jellyfish's new species handle to living slices:
 /// an invalid species is refused before anything changes; a live slice takes a valid one
-/// through [`SliceSim::set_species`](crate::sim::SliceSim::set_species) when it next steps. A far jellyfish wants the new species' recorded cycle (the levels of detail
+/// through [`SliceSim::set_species`](crate::sim::SliceSim::set_species) when it next
+/// steps. A far jellyfish wants the new species' recorded cycle (the levels of detail
 /// switch it once recorded). Only jellyfish whose species asset or handle changed are
 /// visited (`AssetChanged`), not every one each frame.
 pub(super) fn apply_edits(

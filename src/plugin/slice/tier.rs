@@ -54,8 +54,8 @@ pub(crate) struct Replay {
 
 impl Replay {
     /// Sets the time added to `added` seconds and plays the steps that pays for;
-    /// `after_step` sees the replay after each. Resting holds the frame where the stroke stopped and
-    /// swims nowhere.
+    /// `after_step` sees the replay after each. Resting holds the frame where the stroke
+    /// stopped and swims nowhere.
     pub fn advance_until(&mut self, added: f64, resting: bool, mut after_step: impl FnMut(&Self)) {
         for _ in 0..self.clock.add_until(added) {
             if resting {
