@@ -25,10 +25,19 @@ pub(super) fn screen_sizes<'a>(
         ),
     >,
 ) -> Vec<Rank> {
+    // The camera's lens, worked out once rather than for each of ten thousand jellyfish.
     let camera = cameras
         .iter()
         .filter(|(_, c, ..)| c.is_active)
-        .min_by_key(|(e, c, ..)| (c.order, *e));
+        .min_by_key(|(e, c, ..)| (c.order, *e))
+        .map(|(_, _, eye, projection)| {
+            let lens = match projection {
+                Projection::Perspective(p) => Lens::Perspective((0.5 * p.fov).tan()),
+                Projection::Orthographic(o) => Lens::Orthographic(o.area.height().max(1e-6)),
+                _ => Lens::Other,
+            };
+            (eye.translation(), lens)
+        });
     jellyfish
         .filter(|(_, slice, ..)| slice.started())
         .map(|(entity, slice, meshes, transform)| {
@@ -37,14 +46,14 @@ pub(super) fn screen_sizes<'a>(
             let size = match camera {
                 None => f32::INFINITY,
                 Some(_) if unseen => 0.0,
-                Some((_, _, eye, projection)) => {
-                    let distance = eye.translation().distance(transform.translation());
-                    match projection {
-                        Projection::Perspective(p) => {
-                            diameter / (2.0 * distance.max(1e-6) * (0.5 * p.fov).tan())
+                Some((eye, lens)) => {
+                    let distance = eye.distance(transform.translation());
+                    match lens {
+                        Lens::Perspective(tan_half) => {
+                            diameter / (2.0 * distance.max(1e-6) * tan_half)
                         }
-                        Projection::Orthographic(o) => diameter / o.area.height().max(1e-6),
-                        _ => 1.0,
+                        Lens::Orthographic(height) => diameter / height,
+                        Lens::Other => 1.0,
                     }
                 }
             };
@@ -61,6 +70,26 @@ pub(super) fn screen_sizes<'a>(
         .collect()
 }
 
+/// What a size on screen is measured through.
+#[derive(Clone, Copy)]
+enum Lens {
+    /// The tangent of half the vertical field of view.
+    Perspective(f32),
+    /// The height of the view, world units.
+    Orthographic(f32),
+    Other,
+}
+
+/// The jellyfish whose tier should change, with the tier each should have, in
+/// [`assign`]'s order: read from the ranks, not looked up again for each jellyfish.
+pub(super) fn changes(ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
+    assign(ranks, levels)
+        .into_iter()
+        .filter(|(_, tier, from)| tier != from)
+        .map(|(e, tier, _)| (e, tier))
+        .collect()
+}
+
 /// The tier each jellyfish should have: the `near` largest (with hysteresis) of at least
 /// `near_size`, then the `mid` largest of the rest, then far. Near and mid come largest
 /// first; of the far, those not far now (the changes) come as the mid tier's claims rank
@@ -68,8 +97,8 @@ pub(super) fn screen_sizes<'a>(
 ///
 /// Only each tier's budget is put in order, after a selection, and the far changes: ten
 /// thousand jellyfish sorted twice a frame, in a serial system, were 1.5% of the 10,002
-/// bench's CPU.
-pub(super) fn choose(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
+/// bench's CPU. Each comes with the tier it holds now.
+fn assign(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier, Tier)> {
     let boost = 1.0 + levels.hysteresis.max(0.0);
     let claim = |r: &Rank, tier: Tier| {
         if r.tier <= tier {
@@ -101,11 +130,11 @@ pub(super) fn choose(mut ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity
             .take(budget)
             .take_while(|r| claim(r, tier) >= least)
             .count();
-        chosen.extend(ranks.drain(..taken).map(|r| (r.entity, tier)));
+        chosen.extend(ranks.drain(..taken).map(|r| (r.entity, tier, r.tier)));
     }
     let moved = to_front(&mut ranks, |r| r.tier != Tier::Far);
     ranks[..moved].sort_by(order(Tier::Mid));
-    chosen.extend(ranks.into_iter().map(|r| (r.entity, Tier::Far)));
+    chosen.extend(ranks.into_iter().map(|r| (r.entity, Tier::Far, r.tier)));
     chosen
 }
 
@@ -124,6 +153,14 @@ fn to_front(ranks: &mut [Rank], first: impl Fn(&Rank) -> bool) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The tier each jellyfish should have ([`assign`]).
+    fn choose(ranks: Vec<Rank>, levels: &DetailLevels) -> Vec<(Entity, Tier)> {
+        assign(ranks, levels)
+            .into_iter()
+            .map(|(e, tier, _)| (e, tier))
+            .collect()
+    }
 
     fn ranks(sizes: &[(u32, f32, Tier)]) -> Vec<Rank> {
         sizes
@@ -290,6 +327,8 @@ mod tests {
                 changes(&b),
                 "{count} ranks, budgets {near}, {mid}"
             );
+            // As the levels of detail take them, from the ranks' own tiers.
+            assert_eq!(super::changes(ranks(&input), &levels), changes(&b));
             let (mut a, mut b) = (a, b);
             a.sort();
             b.sort();

@@ -3,7 +3,7 @@
 //! state; what differs in shape fades out over a quarter stroke.
 
 use super::caches::CycleCaches;
-use super::choose::{choose, screen_sizes};
+use super::choose::{changes, screen_sizes};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::render::JellyfishMeshes;
 use crate::plugin::settings::JellyfishSettings;
@@ -98,10 +98,7 @@ pub(super) fn change_tiers(
             .iter()
             .map(|(e, slice, _, _, meshes, transform, _)| (e, slice, meshes, transform)),
     );
-    let mut changes: Vec<(Entity, Tier)> = choose(sizes, levels)
-        .into_iter()
-        .filter(|(e, tier)| ranked.get(*e).is_ok_and(|(_, s, ..)| s.tier != *tier))
-        .collect();
+    let mut changes = changes(sizes, levels);
     if changes.is_empty() {
         return;
     }
