@@ -20,6 +20,7 @@ use bevy::camera::primitives::{Aabb, Frustum};
 use bevy::camera::visibility::NoAutoAabb;
 use bevy::mesh::{Indices, MeshTag, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
+use bevy::utils::Parallel;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -199,36 +200,37 @@ fn pack_far(
 /// The shared trail a far instance carries, and the guides it was packed for.
 type HeldTrail = Option<(Arc<[Vec3]>, usize)>;
 
-/// The serial half: copy the buffers into the mesh assets (creating them the first time).
-/// An empty surface (a species without tentacles) is hidden, never handed to Bevy.
+/// The mostly serial half: copy the buffers into the mesh assets (creating them the first
+/// time). An empty surface (a species without tentacles) is hidden, never handed to Bevy.
+/// Every jellyfish's and its children's bounds are copied side by side first: ten thousand
+/// of them were a serial stretch of the frame.
 pub(super) fn write_meshes(
     mut commands: Commands,
     mut jellyfish: Query<(Entity, &mut JellyfishMeshes, Option<&mut Aabb>)>,
-    mut child_bounds: Query<&mut Aabb, (ChildPart, Without<JellyfishMeshes>)>,
+    mut child_bounds: Query<(&mut Aabb, &ChildOf), (ChildPart, Without<JellyfishMeshes>)>,
     mut assets: ResMut<Assets<Mesh>>,
     timings: Res<JellyfishTimings>,
+    mut unbounded: Local<Parallel<Vec<(Entity, Aabb)>>>,
 ) {
     let start = Instant::now();
-    jellyfish.iter_mut().for_each(|(entity, meshes, aabb)| {
-        // Bounds follow the slice every frame, seen or not, so Bevy culls with them.
-        let Some(bounds) = meshes.bounds else {
-            return;
-        };
-        match aabb {
-            Some(mut aabb) => *aabb = bounds,
-            None => {
-                commands.entity(entity).insert((bounds, NoAutoAabb));
-            }
-        }
-        for child in [meshes.tentacle_entity, meshes.glow_entity]
-            .into_iter()
-            .flatten()
+    // Bounds follow the slice every frame, seen or not, so Bevy culls with them.
+    jellyfish
+        .par_iter_mut()
+        .for_each(|(entity, meshes, aabb)| match (meshes.bounds, aabb) {
+            (Some(bounds), Some(mut aabb)) => *aabb = bounds,
+            (Some(bounds), None) => unbounded.borrow_local_mut().push((entity, bounds)),
+            (None, _) => {}
+        });
+    child_bounds.par_iter_mut().for_each(|(mut aabb, parent)| {
+        if let Ok((_, meshes, _)) = jellyfish.get(parent.parent())
+            && let Some(bounds) = meshes.bounds
         {
-            if let Ok(mut aabb) = child_bounds.get_mut(child) {
-                *aabb = bounds;
-            }
+            *aabb = bounds;
         }
     });
+    for (entity, bounds) in unbounded.drain() {
+        commands.entity(entity).insert((bounds, NoAutoAabb));
+    }
     for (entity, mut meshes, _) in &mut jellyfish {
         if !meshes.dirty {
             continue;

@@ -16,6 +16,7 @@ use super::water::{AmbientWater, SampledWater};
 use crate::sim::tank::TankFluid;
 use bevy::prelude::*;
 use bevy::tasks::ComputeTaskPool;
+use bevy::utils::Parallel;
 
 /// Steps a [`TankWater`] the app inserts and lets the jellyfish's jets stir it. Leave it
 /// out to keep a `TankWater` still or step it yourself.
@@ -145,35 +146,44 @@ fn step_tank(
 }
 
 /// Each jellyfish's jet pushes the tank's water behind it: a blob a bell across, a bell
-/// and a half behind the bell, moving back at a share of its surge. Gathered in entity
-/// order, so the water is the same in every run.
+/// and a half behind the bell, moving back at a share of its surge. Gathered side by side,
+/// then put in entity order, so the water is the same in every run.
 fn collect_jets(
     mut tank: ResMut<TankWater>,
     jellyfish: Query<(Entity, &JellyfishSlice, &SwimMotion, &Transform)>,
+    mut gathered: Local<Parallel<Vec<Jet>>>,
+    mut jets: Local<Vec<Jet>>,
 ) {
     if tank.jet_strength <= 0.0 {
         return;
     }
-    let mut jets: Vec<(Entity, Vec3, f32, Vec3)> = jellyfish
-        .iter()
-        .filter_map(|(e, slice, motion, transform)| {
-            let species = slice.species()?;
+    jellyfish
+        .par_iter()
+        .for_each(|(e, slice, motion, transform)| {
+            let Some(species) = slice.species() else {
+                return;
+            };
             if motion.swim_speed <= 0.0 {
-                return None;
+                return;
             }
             let axis = motion.pose.rotation * Vec3::Y;
             let size = species.diameter * transform.scale.max_element();
             let at = motion.pose.position - axis * 1.5 * size;
-            Some((e, at, size, -axis * motion.swim_speed))
-        })
-        .collect();
+            let jet = (e, at, size, -axis * motion.swim_speed);
+            gathered.borrow_local_mut().push(jet);
+        });
+    jets.clear();
+    gathered.drain_into(&mut jets);
     // Entities are unique: an unstable sort gives the one order.
     jets.sort_unstable_by_key(|j| j.0);
     let strength = tank.jet_strength;
-    for (_, at, size, velocity) in jets {
+    for &(_, at, size, velocity) in jets.iter() {
         tank.fluid.stir(at, size, velocity * strength);
     }
 }
+
+/// A jet as gathered: whose, where, how wide, how fast.
+type Jet = (Entity, Vec3, f32, Vec3);
 
 /// How quick a stir is a full-strength touch, in its radii a second.
 pub const STIR_FOR_A_FULL_TOUCH: f32 = 4.0;
