@@ -13,61 +13,67 @@ pub(super) struct Rank {
     pub tier: Tier,
 }
 
-/// Sizes on screen of every started jellyfish, from the first active camera.
-pub(super) fn screen_sizes<'a>(
-    cameras: &Query<(Entity, &Camera, &GlobalTransform, &Projection)>,
-    jellyfish: impl Iterator<
-        Item = (
-            Entity,
-            &'a JellyfishSlice,
-            Option<&'a JellyfishMeshes>,
-            &'a GlobalTransform,
-        ),
-    >,
-) -> Vec<Rank> {
-    // The camera's lens, worked out once rather than for each of ten thousand jellyfish.
-    let camera = cameras
-        .iter()
-        .filter(|(_, c, ..)| c.is_active)
-        .min_by_key(|(e, c, ..)| (c.order, *e))
-        .map(|(_, _, eye, projection)| {
-            let lens = match projection {
-                Projection::Perspective(p) => Lens::Perspective((0.5 * p.fov).tan()),
-                Projection::Orthographic(o) => Lens::Orthographic(o.area.height().max(1e-6)),
-                _ => Lens::Other,
-            };
-            (eye.translation(), lens)
-        });
-    jellyfish
-        .filter(|(_, slice, ..)| slice.started())
-        .map(|(entity, slice, meshes, transform)| {
-            let diameter = slice.species.diameter * transform.scale().max_element();
-            let unseen = meshes.is_some_and(|m| !m.seen() && m.bounds.is_some());
-            let size = match camera {
-                None => f32::INFINITY,
-                Some(_) if unseen => 0.0,
-                Some((eye, lens)) => {
-                    let distance = eye.distance(transform.translation());
-                    match lens {
-                        Lens::Perspective(tan_half) => {
-                            diameter / (2.0 * distance.max(1e-6) * tan_half)
+/// Where sizes on screen are measured from: the first active camera's eye and lens,
+/// worked out once a frame rather than for each of ten thousand jellyfish.
+#[derive(Clone, Copy)]
+pub(super) struct Eye(Option<(Vec3, Lens)>);
+
+impl Eye {
+    pub(super) fn of(cameras: &Query<(Entity, &Camera, &GlobalTransform, &Projection)>) -> Self {
+        Self(
+            cameras
+                .iter()
+                .filter(|(_, c, ..)| c.is_active)
+                .min_by_key(|(e, c, ..)| (c.order, *e))
+                .map(|(_, _, eye, projection)| {
+                    let lens = match projection {
+                        Projection::Perspective(p) => Lens::Perspective((0.5 * p.fov).tan()),
+                        Projection::Orthographic(o) => {
+                            Lens::Orthographic(o.area.height().max(1e-6))
                         }
-                        Lens::Orthographic(height) => diameter / height,
-                        Lens::Other => 1.0,
-                    }
+                        _ => Lens::Other,
+                    };
+                    (eye.translation(), lens)
+                }),
+        )
+    }
+
+    /// A started jellyfish's size on screen (none for one not started): infinite without
+    /// a camera, nothing where no camera sees it.
+    pub(super) fn rank(
+        self,
+        entity: Entity,
+        slice: &JellyfishSlice,
+        meshes: Option<&JellyfishMeshes>,
+        transform: &GlobalTransform,
+    ) -> Option<Rank> {
+        if !slice.started() {
+            return None;
+        }
+        let diameter = slice.species.diameter * transform.scale().max_element();
+        let unseen = meshes.is_some_and(|m| !m.seen() && m.bounds.is_some());
+        let size = match self.0 {
+            None => f32::INFINITY,
+            Some(_) if unseen => 0.0,
+            Some((eye, lens)) => {
+                let distance = eye.distance(transform.translation());
+                match lens {
+                    Lens::Perspective(tan_half) => diameter / (2.0 * distance.max(1e-6) * tan_half),
+                    Lens::Orthographic(height) => diameter / height,
+                    Lens::Other => 1.0,
                 }
-            };
-            Rank {
-                entity,
-                size: if size.is_finite() || size == f32::INFINITY {
-                    size
-                } else {
-                    0.0
-                },
-                tier: slice.tier,
             }
+        };
+        Some(Rank {
+            entity,
+            size: if size.is_finite() || size == f32::INFINITY {
+                size
+            } else {
+                0.0
+            },
+            tier: slice.tier,
         })
-        .collect()
+    }
 }
 
 /// What a size on screen is measured through.

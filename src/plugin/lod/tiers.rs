@@ -3,7 +3,7 @@
 //! state; what differs in shape fades out over a quarter stroke.
 
 use super::caches::CycleCaches;
-use super::choose::{changes, screen_sizes};
+use super::choose::{Eye, Rank, changes};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::render::JellyfishMeshes;
 use crate::plugin::settings::JellyfishSettings;
@@ -17,6 +17,7 @@ use crate::sim::cycle::CycleCache;
 use crate::species::Species;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
+use bevy::utils::Parallel;
 use std::sync::Arc;
 
 /// A jellyfish as the levels of detail see it.
@@ -32,6 +33,7 @@ type Detailed = (
 
 /// Moves jellyfish between tiers: demotions at once, promotions (the costly way) up to
 /// [`DetailLevels::promotions_per_frame`], nearest first.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn change_tiers(
     cameras: Query<(Entity, &Camera, &GlobalTransform, &Projection)>,
     mut jellyfish: Query<Detailed>,
@@ -40,19 +42,49 @@ pub(super) fn change_tiers(
     mut edited: MessageReader<SliceEdited>,
     timings: Res<JellyfishTimings>,
     mut commands: Commands,
+    mut survey: Local<Parallel<Survey>>,
 ) {
-    // Drop cycles of species no jellyfish has any more (after edits).
-    let mut distinct: Vec<&Arc<Species>> = Vec::new();
-    for (entity, slice, .., live) in &jellyfish {
-        mark_live(&mut commands, entity, slice, Some(live));
-        if !distinct.iter().any(|s| same(s, &slice.species)) {
-            distinct.push(&slice.species);
+    // One look over every jellyfish, side by side: the species in use, the live marks to
+    // mend, the far ones waiting for an edited cycle, and each one's size on screen.
+    let eye = Eye::of(&cameras);
+    jellyfish.par_iter().for_each_init(
+        || survey.borrow_local_mut(),
+        |local, (entity, slice, _, _, meshes, transform, marked)| {
+            let live = is_live(slice);
+            if live != marked {
+                local.marks.push((entity, live));
+            }
+            if !local.species.iter().any(|s| same(s, &slice.species)) {
+                local.species.push(slice.species.clone());
+            }
+            if slice.replay.as_ref().is_some_and(|r| r.wanted.is_some()) {
+                local.wanting.push(entity);
+            }
+            local
+                .ranks
+                .extend(eye.rank(entity, slice, meshes, transform));
+        },
+    );
+    let (mut marks, mut wanting, mut ranks) = (Vec::new(), Vec::new(), Vec::new());
+    let mut in_use: Vec<Species> = Vec::new();
+    for local in survey.iter_mut() {
+        for species in local.species.drain(..) {
+            if !in_use.contains(&*species) {
+                in_use.push(Species::clone(&species));
+                in_use.push(tier_species(&species, Tier::Mid));
+            }
         }
+        marks.append(&mut local.marks);
+        wanting.append(&mut local.wanting);
+        ranks.append(&mut local.ranks);
     }
-    let in_use: Vec<Species> = distinct
-        .into_iter()
-        .flat_map(|s| [Species::clone(s), tier_species(s, Tier::Mid)])
-        .collect();
+    // Threads split the work differently each run: entity order makes it one order.
+    marks.sort_unstable_by_key(|&(e, _)| e);
+    wanting.sort_unstable();
+    for (entity, live) in marks {
+        mark(&mut commands, entity, live);
+    }
+    // Drop cycles of species no jellyfish has any more (after edits).
     caches.retain(&in_use);
     // The cycles of live slices just edited, for when they move away: recorded a few
     // steps a frame from now, the mid tier's compact variant too (recorded in the frame a
@@ -67,7 +99,8 @@ pub(super) fn change_tiers(
     // once a frame for each species wanted, not once for each of its far jellyfish.
     caches.collect();
     let mut asked: Vec<(Species, Option<Arc<CycleCache>>)> = Vec::new();
-    for (_, mut slice, mut history, ..) in &mut jellyfish {
+    let mut waiting = jellyfish.iter_many_mut(&wanting);
+    while let Some((_, mut slice, mut history, ..)) = waiting.fetch_next() {
         let Some(wanted) = slice.replay.as_ref().and_then(|r| r.wanted.as_ref()) else {
             continue;
         };
@@ -92,13 +125,7 @@ pub(super) fn change_tiers(
     }
     let ranked = &jellyfish;
     let levels = &settings.detail;
-    let sizes = screen_sizes(
-        &cameras,
-        ranked
-            .iter()
-            .map(|(e, slice, _, _, meshes, transform, _)| (e, slice, meshes, transform)),
-    );
-    let mut changes = changes(sizes, levels);
+    let mut changes = changes(ranks, levels);
     if changes.is_empty() {
         return;
     }
@@ -149,27 +176,31 @@ pub(super) fn change_tiers(
         });
     // Whatever the first pass queued for them, their new tiers decide.
     for (entity, slice, ..) in jellyfish.iter_many(plan.keys()) {
-        mark_live(&mut commands, entity, slice, None);
+        mark(&mut commands, entity, is_live(slice));
     }
 }
 
-/// Marks a started jellyfish near or mid as a live slice, and no other ([`LiveSlice`]),
-/// where it is not so marked (`marked`: whether it is, if known).
-fn mark_live(
-    commands: &mut Commands,
-    entity: Entity,
-    slice: &JellyfishSlice,
-    marked: Option<bool>,
-) {
-    let live = slice.started() && slice.tier != Tier::Far;
-    if marked == Some(live) {
-        return;
-    }
+/// Whether a jellyfish is a live slice ([`LiveSlice`]): started, and near or mid.
+fn is_live(slice: &JellyfishSlice) -> bool {
+    slice.started() && slice.tier != Tier::Far
+}
+
+/// Marks a jellyfish a live slice, or not ([`LiveSlice`]).
+fn mark(commands: &mut Commands, entity: Entity, live: bool) {
     if live {
         commands.entity(entity).try_insert(LiveSlice);
     } else {
         commands.entity(entity).try_remove::<LiveSlice>();
     }
+}
+
+/// What one look over every jellyfish finds, on one thread.
+#[derive(Default)]
+pub(super) struct Survey {
+    species: Vec<Arc<Species>>,
+    marks: Vec<(Entity, bool)>,
+    wanting: Vec<Entity>,
+    ranks: Vec<Rank>,
 }
 
 /// A far jellyfish takes another cycle (its species was edited), at the same phase.
