@@ -14,6 +14,7 @@ use bevy::camera::visibility::NoAutoAabb;
 use bevy::mesh::MeshTag;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
+use bevy::utils::Parallel;
 
 /// The template meshes, one pair per resolution, shared by every species drawn at it.
 #[derive(Resource, Default)]
@@ -87,23 +88,45 @@ pub(crate) fn set_up(
     mut removed: RemovedComponents<JellyfishMeshes>,
     own: Option<Res<SpeciesMaterials<StandardMaterial>>>,
     mut assets: ResMut<Assets<Mesh>>,
+    mut moving: Local<Parallel<Vec<Entity>>>,
 ) {
     for entity in removed.read() {
         slots.give_back(entity);
     }
     let global = path.map_or(SurfacePath::CpuMeshes, |p| *p);
     let own = own.as_deref();
-    for (entity, slice, mut meshes, material) in &mut jellyfish {
-        if !slice.started() {
-            continue;
-        }
-        // A material of the game's own is a StandardMaterial: it needs real meshes.
-        let custom = material.is_some_and(|m| !is_ours(own, &m.0));
-        let wanted = if custom {
+    // A material of the game's own is a StandardMaterial: it needs real meshes.
+    let wanted_path = |material: Option<&MeshMaterial3d<StandardMaterial>>| {
+        if material.is_some_and(|m| !is_ours(own, &m.0)) {
             SurfacePath::CpuMeshes
         } else {
             global
-        };
+        }
+    };
+    // Most frames no jellyfish changes path or resolution: those that do are looked for
+    // side by side (ten thousand, a resolution worked out for each, were a serial stretch
+    // of the frame), then moved in entity order.
+    jellyfish.par_iter().for_each_init(
+        || moving.borrow_local_mut(),
+        |list, (entity, slice, meshes, material)| {
+            if !slice.started() {
+                return;
+            }
+            let wanted = wanted_path(material);
+            if meshes.path != Some(wanted)
+                || wanted == SurfacePath::Templates
+                    && meshes.written != Some(settings.resolution(&slice.species))
+            {
+                list.push(entity);
+            }
+        },
+    );
+    let mut stale = Vec::new();
+    moving.drain_into(&mut stale);
+    stale.sort_unstable();
+    let mut stale = jellyfish.iter_many_mut(&stale);
+    while let Some((entity, slice, mut meshes, material)) = stale.fetch_next() {
+        let wanted = wanted_path(material);
         if meshes.path != Some(wanted) {
             tear_down(
                 &mut commands,
