@@ -1,6 +1,7 @@
 //! Water and steering through the real plugin, headless: currents carry jellyfish, a stir
 //! moves those near it, a swimmer held in a current stays put, commanded turns happen
-//! during strokes only, and all of it replays bit for bit, whatever order the jellyfish are met in.
+//! during strokes only, and all of it replays bit for bit, whatever order the jellyfish
+//! are met in.
 
 use crate::common::app::Headless;
 use bevy::prelude::*;
