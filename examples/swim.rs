@@ -15,7 +15,11 @@ fn main() {
     species.expansion_stagger = arg(2, species.expansion_stagger);
     species.contraction_frequency = arg(3, species.contraction_frequency);
     species.tentacle_length = arg(5, species.tentacle_length);
-    species.angular_stiffness = arg(6, species.angular_stiffness);
+    if args.get(6).is_some() {
+        // The paper's springs: the moon jelly otherwise bends as its mesoglea.
+        species.bending = bevy_jellyfish::Bending::Springs;
+        species.angular_stiffness = arg(6, species.angular_stiffness);
+    }
     species.muscle_cross_section = arg(7, species.muscle_cross_section);
     if arg(8, 0.0) > 0.0 {
         species.advection = bevy_jellyfish::species::Advection::MacCormack;

@@ -31,7 +31,9 @@ pub use plugin::{
     JellyfishSystems, SpeciesRejected,
 };
 pub use sim::{SliceSim, SliceView};
-pub use species::{GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError};
+pub use species::{
+    Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
+};
 
 /// What a game needs: `use bevy_jellyfish::prelude::*;`.
 pub mod prelude {
@@ -45,7 +47,7 @@ pub mod prelude {
         Steering, StrokeStarted, SurfaceMode, SwimMotion, TankWater, Tier,
     };
     pub use crate::species::{
-        GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
+        Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
     };
 }
 

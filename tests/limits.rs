@@ -11,7 +11,9 @@
 
 use bevy_jellyfish::shape::{JellyMesh, build_into};
 use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
-use bevy_jellyfish::species::{Advection, GonadShape, Kernel, SliceGeometry, SpeciesError};
+use bevy_jellyfish::species::{
+    Advection, Bending, GonadShape, Kernel, REFERENCE_HINGE_LENGTH, SliceGeometry, SpeciesError,
+};
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::{Duration, Instant};
 
@@ -173,6 +175,7 @@ fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
     s.advection = Advection::ALL[(rng.next() % Advection::ALL.len() as u64) as usize];
     s.kernel = Kernel::ALL[(rng.next() % Kernel::ALL.len() as u64) as usize];
     s.slice_geometry = SliceGeometry::ALL[(rng.next() % SliceGeometry::ALL.len() as u64) as usize];
+    s.bending = Bending::ALL[(rng.next() % Bending::ALL.len() as u64) as usize];
     s.structural_abs = rng.next().is_multiple_of(2);
     s.gonad_shape = GonadShape::ALL[(rng.next() % GonadShape::ALL.len() as u64) as usize];
     s
@@ -184,6 +187,21 @@ fn within_joint_limits(s: &mut Species) {
     use bevy_jellyfish::species::limits::{MAX_COST_PER_SECOND, mesh_vertices, simulation_cost};
     s.height = s.height.clamp(0.1 * s.diameter, 2.0 * s.diameter);
     s.thickness = s.thickness.min(0.5 * s.diameter.min(2.0 * s.height));
+    // A wall bending as a plate of its mesoglea takes the springs' range: thinned or
+    // thickened into it, or given the paper's springs where the proportions forbid it.
+    if s.bending == Bending::Mesoglea {
+        let springs = bevy_jellyfish::species::limits::of("angular_stiffness").unwrap();
+        let plate = |bending: f64| {
+            let per = 12.0 * REFERENCE_HINGE_LENGTH as f64 / s.elastic_modulus as f64;
+            (bending * per).cbrt() as f32
+        };
+        s.thickness = s.thickness.clamp(plate(springs.min), plate(springs.max));
+        if s.thickness > 0.5 * s.diameter.min(2.0 * s.height)
+            || !springs.admits(s.bending_stiffness() as f64)
+        {
+            s.bending = Bending::Springs;
+        }
+    }
     s.tentacle_length = s.tentacle_length.min(10.0 * s.diameter);
     s.tentacle_radius = s.tentacle_radius.min(0.05 * s.diameter);
     s.manubrium_length = s.manubrium_length.min(2.0 * s.diameter);
@@ -409,17 +427,22 @@ fn one_field_edited_on_a_living_slice_is_refused_or_runs_on() {
             .chain(FringeDrag::ALL.map(|fringe_drag| Species {
                 fringe_drag,
                 ..base.clone()
+            }))
+            .chain(Bending::ALL.map(|bending| Species {
+                bending,
+                ..base.clone()
             }));
         for edited in choices {
             let what = format!(
-                "{} as {:?}, {:?}, {:?}, {:?}, {:?}, {:?}",
+                "{} as {:?}, {:?}, {:?}, {:?}, {:?}, {:?}, {:?}",
                 base.name,
                 edited.advection,
                 edited.kernel,
                 edited.slice_geometry,
                 edited.muscle_law,
                 edited.muscle_timing,
-                edited.fringe_drag
+                edited.fringe_drag,
+                edited.bending
             );
             edit(base, &edited, what);
         }

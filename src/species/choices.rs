@@ -175,3 +175,23 @@ impl FringeDrag {
     /// Every law, for pickers.
     pub const ALL: [FringeDrag; 2] = [FringeDrag::Filaments, FringeDrag::Curtain];
 }
+
+/// Where the bell's resistance to bending comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum Bending {
+    /// The mesoglea's own: a plate of `elastic_modulus` as thick as the wall bends with
+    /// E·ϑ³/12, as its stretching follows the same modulus and thickness. A bell resized,
+    /// thickened or stiffened keeps a rigidity that fits it; `angular_stiffness` is not
+    /// read. The animals.
+    #[default]
+    Mesoglea,
+    /// The paper's angular springs, `angular_stiffness` whatever the mesoglea.
+    Springs,
+}
+
+impl Bending {
+    /// Every source, for pickers.
+    pub const ALL: [Bending; 2] = [Bending::Mesoglea, Bending::Springs];
+}

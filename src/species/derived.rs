@@ -1,7 +1,11 @@
 //! What follows from a species' fields: the fluid box and its cells, the water's
 //! kinematic viscosity, the mesoglea's damping, the period and the fixed step.
 
-use super::{MuscleTiming, Species, limits};
+use super::{Bending, MuscleTiming, Species, limits};
+
+/// The hinge length `angular_stiffness` refers to, m (grid 100: half a 4 mm cell): the
+/// bending per radian of a 2 mm stretch of wall.
+pub const REFERENCE_HINGE_LENGTH: f32 = 0.002;
 
 impl Species {
     /// Fluid cell size, m.
@@ -99,6 +103,20 @@ impl Species {
             self.contraction_duty
         } else {
             (self.contraction_duty / stretch).clamp(0.02, 0.9)
+        }
+    }
+
+    /// The bending the bell's angular springs take at the apex thickness, per
+    /// [`REFERENCE_HINGE_LENGTH`] of hinge, N·m/rad: `angular_stiffness` with the paper's
+    /// [`Bending::Springs`], or with [`Bending::Mesoglea`] the plate law of its mesoglea,
+    /// E·ϑ³/12 (the same number the shipped animals' `angular_stiffness` holds).
+    pub fn bending_stiffness(&self) -> f32 {
+        match self.bending {
+            Bending::Springs => self.angular_stiffness,
+            Bending::Mesoglea => {
+                let t = self.thickness;
+                self.elastic_modulus * t * t * t / 12.0 / REFERENCE_HINGE_LENGTH
+            }
         }
     }
 

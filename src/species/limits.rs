@@ -7,7 +7,7 @@
 //! range could still exceed — the slice's cost per simulated second and the mesh's vertex
 //! count. Those are checked after the table, and the error names the field that tips it.
 
-use super::{Advection, SliceGeometry, Species, SpeciesError};
+use super::{Advection, Bending, SliceGeometry, Species, SpeciesError};
 
 /// The range one field may take.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -390,6 +390,25 @@ pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
                 "must be at most {} m (half the diameter and the height), got {} m",
                 0.5 * s.diameter.min(2.0 * s.height),
                 s.thickness
+            ),
+        );
+    }
+    // The mesoglea's own bending is held to the springs' limit: the implicit step meets
+    // the same hinges either way.
+    let springs = of("angular_stiffness").expect("a listed field");
+    let plate = s.bending_stiffness() as f64;
+    if s.bending == Bending::Mesoglea && !springs.admits(plate) {
+        return joint(
+            "bending",
+            format!(
+                "the mesoglea bends as a plate, E·ϑ³/12 per 2 mm of hinge: {} N·m/rad from \
+                 elastic_modulus {} Pa and thickness {} m, outside {} ({}); make the wall \
+                 thinner or softer, or take bending: Springs",
+                trim(plate),
+                s.elastic_modulus,
+                s.thickness,
+                springs.range(),
+                springs.why
             ),
         );
     }

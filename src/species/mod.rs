@@ -22,8 +22,9 @@ mod presets;
 mod tests;
 
 pub use choices::{
-    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
+    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
 };
+pub use derived::REFERENCE_HINGE_LENGTH;
 pub use error::SpeciesError;
 
 use serde::{Deserialize, Serialize};
@@ -76,7 +77,12 @@ pub struct Species {
     // --- Elasticity ---
     /// Hookean modulus of the bell mesoglea, Pa (paper: λ = 1186 Pa).
     pub elastic_modulus: f32,
-    /// Bending stiffness of the angular springs per unit depth, N·m/rad.
+    /// Where the bell's bending comes from (see [`Bending`]): its mesoglea, or the
+    /// paper's angular springs.
+    pub bending: Bending,
+    /// Bending stiffness of the angular springs per unit depth at the apex thickness, per
+    /// 2 mm of hinge, N·m/rad; read with [`Bending::Springs`] only
+    /// ([`Species::bending_stiffness`]).
     pub angular_stiffness: f32,
     /// Fraction of the strain energy the mesoglea gives back over a stroke cycle (the
     /// rest is lost to its viscosity); DeMont & Gosline (1988) measured 58%.

@@ -2,7 +2,8 @@
 //! numerics, one call away.
 
 use super::{
-    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry, Species,
+    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
+    Species,
 };
 
 impl Species {
@@ -33,6 +34,10 @@ impl Species {
             // whole bell 0.26 D tall.
             height: 0.0054,
             thickness,
+            // The bell bends as a plate of its mesoglea, E·ϑ³/12, so resized or stiffened it
+            // keeps a rigidity that fits it; the springs' constant below is the same number
+            // at this size, for `Bending::Springs`.
+            bending: Bending::Mesoglea,
             angular_stiffness: 1186.0 * thickness * thickness * thickness / 12.0 / 0.002,
             // The mesoglea gives back 58% of its strain energy over a stroke (DeMont &
             // Gosline 1988, *Polyorchis*; no figure for *Aurelia*), not the paper's all of
@@ -93,6 +98,7 @@ impl Species {
             margin_thickness_ratio: 0.3,
             elastic_modulus: 1186.0,
             // Plate bending of the apex wall, E·ϑ³/12 per 2 mm hinge (`docs/physics.md` §2).
+            bending: Bending::Springs,
             angular_stiffness: 1186.0 * 0.004 * 0.004 * 0.004 / 12.0 / 0.002,
             mesoglea_resilience: 1.0,
             muscle_modulus: 400.0e3,
@@ -208,6 +214,7 @@ impl Species {
             diameter: 0.06,
             height: 0.009,
             thickness,
+            bending: Bending::Mesoglea,
             angular_stiffness: 1186.0 * thickness * thickness * thickness / 12.0 / 0.002,
             // The mesoglea's measured resilience, as the moon jelly's (DeMont & Gosline
             // 1988, measured on a hydromedusa, *Polyorchis*).
@@ -307,6 +314,7 @@ impl Species {
             diameter: 0.016,
             height: 0.0155,
             thickness,
+            bending: Bending::Mesoglea,
             angular_stiffness: 1186.0 * thickness * thickness * thickness / 12.0 / 0.002,
             margin_thickness_ratio: 0.4,
             // Pulse rate and the depth and timing of the stroke are not from a record (the

@@ -74,6 +74,100 @@ fn the_moon_jelly_is_a_saucer_timed_as_the_animal() {
 }
 
 #[test]
+fn the_animals_bend_as_their_mesoglea_and_the_paper_as_its_springs() {
+    use crate::species::Bending;
+    for s in Species::presets() {
+        assert_eq!(s.bending, Bending::Mesoglea, "{}", s.name);
+        // The plate law gives the very number the springs' constant holds at this size:
+        // the animals swim to the bit as before.
+        assert_eq!(
+            s.bending_stiffness().to_bits(),
+            s.angular_stiffness.to_bits(),
+            "{}",
+            s.name
+        );
+        // The springs' constant is not read; the wall's modulus and thickness are.
+        let springs_changed = Species {
+            angular_stiffness: 0.5,
+            ..s.clone()
+        };
+        assert_eq!(springs_changed.bending_stiffness(), s.bending_stiffness());
+        let stiffer = Species {
+            elastic_modulus: 2.0 * s.elastic_modulus,
+            ..s.clone()
+        };
+        let close = |a: f32, b: f32| (a / b - 1.0).abs() < 1e-5;
+        assert!(close(
+            stiffer.bending_stiffness(),
+            2.0 * s.bending_stiffness()
+        ));
+        let thicker = Species {
+            thickness: 2.0 * s.thickness,
+            ..s.clone()
+        };
+        assert!(close(
+            thicker.bending_stiffness(),
+            8.0 * s.bending_stiffness()
+        ));
+        // Made larger by its lengths alone, it bends as `resized` makes it bend.
+        let big = s.resized(2.0 * s.diameter);
+        let by_hand = Species {
+            diameter: big.diameter,
+            height: big.height,
+            thickness: big.thickness,
+            ..s.clone()
+        };
+        assert!(close(by_hand.bending_stiffness(), big.bending_stiffness()));
+    }
+    let paper = Species::paper();
+    assert_eq!(paper.bending, Bending::Springs);
+    let springs_changed = Species {
+        angular_stiffness: 0.5,
+        ..paper.clone()
+    };
+    assert_eq!(springs_changed.bending_stiffness(), 0.5);
+    let thicker = Species {
+        thickness: 2.0 * paper.thickness,
+        ..paper.clone()
+    };
+    assert_eq!(thicker.bending_stiffness(), paper.bending_stiffness());
+}
+
+#[test]
+fn the_bending_reads_and_writes_and_a_wrong_one_is_named() {
+    let s = Species::from_ron("(bending: Springs)").unwrap();
+    assert_eq!(s.bending, crate::species::Bending::Springs);
+    let back = Species::from_ron(&s.to_ron().unwrap()).unwrap();
+    assert_eq!(back.bending, crate::species::Bending::Springs);
+    let msg = Species::from_ron("(bending: Rubber)")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("Rubber") && msg.contains("Mesoglea"),
+        "the message names the bad value and the good ones: {msg}"
+    );
+}
+
+#[test]
+fn a_mesoglea_too_stiff_to_bend_is_named() {
+    // A 25 cm moon jelly with a wall of 8 cm: E·ϑ³/12 per 2 mm is 25 N·m/rad.
+    let s = Species {
+        diameter: 0.25,
+        height: 0.1,
+        thickness: 0.08,
+        ..Species::aurelia()
+    };
+    let err = s.validate().unwrap_err().to_string();
+    assert!(err.contains("bending") && err.contains("plate"), "{err}");
+    // With the paper's springs the same wall takes `angular_stiffness` and is valid.
+    let springs = Species {
+        bending: crate::species::Bending::Springs,
+        ..s
+    };
+    assert_eq!(springs.validate(), Ok(()));
+}
+
+#[test]
 fn ron_round_trip() {
     let mut s = Species::aurelia();
     s.name = "Test".into();

@@ -143,9 +143,6 @@ impl Muscle {
     }
 }
 
-/// Hinge length the default `angular_stiffness` refers to, m (grid 100: half a 4 mm cell).
-pub(crate) const REFERENCE_HINGE_LENGTH: f32 = 0.002;
-
 pub(super) fn spring(points: &[Vec2], a: usize, b: usize, modulus_times_area: f32) -> Spring {
     let rest = (points[b] - points[a]).length();
     Spring {

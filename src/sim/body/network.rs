@@ -5,13 +5,11 @@
 
 use super::depth::Depth;
 use super::elements::{
-    Drive, Hinge, HoopBend, Muscle, REFERENCE_HINGE_LENGTH, Spring, TENTACLE_STRAIN_LIMIT, hinge,
-    hoop_bend, muscle, spring,
+    Drive, Hinge, HoopBend, Muscle, Spring, TENTACLE_STRAIN_LIMIT, hinge, hoop_bend, muscle, spring,
 };
 use super::rest_shape::mesoglea_thickness;
 use super::tentacle::tentacle_bending;
-use crate::species::MuscleLaw;
-use crate::species::Species;
+use crate::species::{MuscleLaw, REFERENCE_HINGE_LENGTH, Species};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -41,8 +39,8 @@ pub(super) fn subumbrellar_springs(
 }
 
 /// Angular springs along the subumbrella: the mesoglea's bending stiffness. Plate bending
-/// stiffness scales with t³; `angular_stiffness` is the value at the apex thickness for a
-/// 2 mm hinge, rescaled to this `spacing` so the bell's rigidity does not depend on the
+/// stiffness scales with t³; [`Species::bending_stiffness`] is the value at the apex
+/// thickness for a 2 mm hinge, rescaled to this `spacing` so the bell's rigidity does not depend on the
 /// grid.
 pub(super) fn mesoglea_hinges(
     species: &Species,
@@ -61,7 +59,7 @@ pub(super) fn mesoglea_hinges(
                 i - 1,
                 i,
                 i + 1,
-                species.angular_stiffness * t.powi(3) * hinge_scale * width,
+                species.bending_stiffness() * t.powi(3) * hinge_scale * width,
             )
         })
         .collect()
@@ -84,8 +82,8 @@ pub(super) fn hoop_bending(
         .map(|i| {
             let s = arc_fraction(i, m) * 0.5 + arc_fraction(i + 1, m) * 0.5;
             let t = mesoglea_thickness(species, s) / species.thickness;
-            // E·ϑ³/12 at this thickness: `angular_stiffness` is it per 2 mm of hinge.
-            let rigidity = species.angular_stiffness * t.powi(3) * REFERENCE_HINGE_LENGTH;
+            // E·ϑ³/12 at this thickness: `bending_stiffness` is it per 2 mm of hinge.
+            let rigidity = species.bending_stiffness() * t.powi(3) * REFERENCE_HINGE_LENGTH;
             let radius = depth.at(0.5 * (subumbrella[i] + subumbrella[i + 1]));
             hoop_bend(subumbrella, i, i + 1, rigidity * spacing / radius)
         })
@@ -234,7 +232,7 @@ pub(super) fn hang_tentacles(
         // the margin itself; beyond it a tentacle bends as a thin cylinder of mesoglea
         // (see `tentacle_bending`) and trails in the flow. A root stiff over a third of
         // the length swung the tentacles as rods across the bell's axis.
-        let margin_hinge = species.angular_stiffness
+        let margin_hinge = species.bending_stiffness()
             * species.margin_thickness_ratio.powi(3)
             * hinge_scale
             * width;
