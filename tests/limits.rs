@@ -204,7 +204,7 @@ fn within_joint_limits(s: &mut Species) {
     }
     s.tentacle_length = s.tentacle_length.min(10.0 * s.diameter);
     s.tentacle_radius = s.tentacle_radius.min(0.05 * s.diameter);
-    s.manubrium_length = s.manubrium_length.min(2.0 * s.diameter);
+    s.manubrium_length = s.manubrium_length.min(4.0 * s.diameter);
     s.manubrium_radius = s.manubrium_radius.min(0.25 * s.diameter);
     s.oral_arm_length = s.oral_arm_length.min(5.0 * s.diameter);
     s.oral_arm_width = s.oral_arm_width.min(0.5 * s.diameter);

@@ -1079,9 +1079,9 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
     let animals = [
         (Species::aurelia(), [0.5, 2.0, 3.875].as_slice()),
         (Species::aequorea(), [0.5, 2.0].as_slice()),
-        // Its 25 mm manubrium is more than two diameters of a smaller bell: that is
-        // rejected, named.
-        (Species::sarsia(), [2.0].as_slice()),
+        // Smaller still, its 0.3 mm tentacles are more than a twentieth of the diameter:
+        // that is refused, named.
+        (Species::sarsia(), [0.5, 2.0].as_slice()),
     ];
     for (animal, scales) in animals {
         let pairs: Vec<(Species, Species)> = scales

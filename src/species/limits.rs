@@ -121,7 +121,7 @@ pub const LIMITS: &[Limit] = &[
     limit!("tentacle_radius", 1e-5, 0.05, "m", "with at most a twentieth of the diameter (below)"),
     limit!("tentacle_length_spread", 0.0, 0.9, "", "a fraction of the length; a tentacle drawn shorter than a tenth of it is a stub"),
     limit!("tentacle_guides", 0.0, 16.0, "", "each guide adds 36 bytes to the packed shape (and, with any, each oral tube 36 more); a current and a turn are the first two harmonics around the margin"),
-    limit!("manubrium_length", 0.0, 2.0, "m", "with at most two bell diameters (below)"),
+    limit!("manubrium_length", 0.0, 4.0, "m", "with at most four bell diameters (below): a prolate medusa's hangs up to two and a half times the bell's height, and it is carried one way, as the oral arms are"),
     limit!("manubrium_radius", 1e-5, 0.25, "m", "with at most a quarter of the diameter (below)"),
     limit!("oral_arm_count", 0.0, 32.0, "", "each arm is a blade of the mesh"),
     limit!("oral_arm_length", 0.0, 5.0, "m", "with at most five bell diameters (below): longer arms trail out of the slice's box"),
@@ -447,8 +447,8 @@ pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
         (
             "manubrium_length",
             s.manubrium_length,
-            2.0 * s.diameter,
-            "two diameters",
+            4.0 * s.diameter,
+            "four diameters",
         ),
         (
             "manubrium_radius",
