@@ -4,8 +4,8 @@
 //! shown as an error above the sliders.
 
 use crate::species::{
-    Advection, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry, Species,
-    limits,
+    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
+    Species, limits,
 };
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
@@ -199,6 +199,7 @@ pub const SECTIONS: &[Section] = &[
 pub const OTHER_FIELDS: &[&str] = &[
     "name",
     "slice_geometry",
+    "bending",
     "fringe_drag",
     "muscle_law",
     "muscle_timing",
@@ -226,7 +227,12 @@ fn slider(ui: &mut egui::Ui, param: &Param, species: &mut Species) -> bool {
         widget = widget.integer();
     }
     let limit = limits::of(param.field).map_or("", |l| l.why);
-    let changed = ui.add(widget).changed();
+    // The springs' constant is not read while the mesoglea bends the bell.
+    let read = param.field != "angular_stiffness" || species.bending == Bending::Springs;
+    let changed = ui
+        .add_enabled(read, widget)
+        .on_disabled_hover_text("read only with bending: Springs")
+        .changed();
     ui.label(egui::RichText::new(param.range_text()).weak().small())
         .on_hover_text(limit);
     ui.end_row();
@@ -263,6 +269,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= muscle_law(ui, &mut species.muscle_law);
                                 changed |= muscle_timing(ui, &mut species.muscle_timing);
                             }
+                            "Bell" => changed |= bending(ui, &mut species.bending),
                             "Tentacles" => changed |= fringe_drag(ui, &mut species.fringe_drag),
                             "Anatomy" => {
                                 changed |= gonad_shape(ui, &mut species.gonad_shape);
@@ -325,6 +332,13 @@ fn slice_geometry(ui: &mut egui::Ui, geometry: &mut SliceGeometry) -> bool {
                the slice at rest";
     let all = &SliceGeometry::ALL;
     picker(ui, "slice_geometry", "slice geometry", why, geometry, all)
+}
+
+fn bending(ui: &mut egui::Ui, bending: &mut Bending) -> bool {
+    let why = "Mesoglea bends the wall as a plate of its own modulus and thickness, E·ϑ³/12, \
+               so resized or stiffened the bell keeps a rigidity that fits it; Springs \
+               takes the paper's angular springs, the bending stiffness above";
+    picker(ui, "bending", "bending", why, bending, &Bending::ALL)
 }
 
 fn muscle_law(ui: &mut egui::Ui, law: &mut MuscleLaw) -> bool {
