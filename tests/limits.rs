@@ -191,11 +191,13 @@ fn within_joint_limits(s: &mut Species) {
     // thickened into it, or given the paper's springs where the proportions forbid it.
     if s.bending == Bending::Mesoglea {
         let springs = bevy_jellyfish::species::limits::of("angular_stiffness").unwrap();
-        let plate = |bending: f64| {
+        let thickness_for = |bending: f64| {
             let per = 12.0 * REFERENCE_HINGE_LENGTH as f64 / s.elastic_modulus as f64;
             (bending * per).cbrt() as f32
         };
-        s.thickness = s.thickness.clamp(plate(springs.min), plate(springs.max));
+        s.thickness = s
+            .thickness
+            .clamp(thickness_for(springs.min), thickness_for(springs.max));
         if s.thickness > 0.5 * s.diameter.min(2.0 * s.height)
             || !springs.admits(s.bending_stiffness() as f64)
         {

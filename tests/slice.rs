@@ -972,8 +972,8 @@ fn every_animal_swims_fastest_near_its_own_pulse_rate() {
 
 /// Cycles 12 to 20 from rest at 60 Hz frames: the mean distance a cycle in diameters, and
 /// the slowest speed while the bell refills (after its contraction) in diameters a second
-/// (negative: drawn back).
-fn stroke_and_refill(species: &Species) -> (f32, f32) {
+/// (negative: drawn back), and the times the slice was restarted.
+fn stroke_and_refill(species: &Species) -> (f32, f32, u32) {
     let (from, to) = (12, 20);
     let mut sim = SliceSim::new(species).unwrap();
     let d = species.diameter;
@@ -996,7 +996,11 @@ fn stroke_and_refill(species: &Species) -> (f32, f32) {
             (time, distance) = (t, x);
         });
     }
-    ((end - start) / (to - from) as f32, slowest)
+    (
+        (end - start) / (to - from) as f32,
+        slowest,
+        sim.recoveries(),
+    )
 }
 
 #[test]
@@ -1019,7 +1023,7 @@ fn a_rower_rows_alike_at_every_size() {
             .iter()
             .map(|k| animal.resized(k * animal.diameter))
             .collect();
-        let runs: Vec<(f32, f32)> = std::thread::scope(|scope| {
+        let runs: Vec<(f32, f32, u32)> = std::thread::scope(|scope| {
             let handles: Vec<_> = sized
                 .iter()
                 .map(|s| scope.spawn(move || stroke_and_refill(s)))
@@ -1030,9 +1034,9 @@ fn a_rower_rows_alike_at_every_size() {
         let speeds: Vec<f32> = runs
             .iter()
             .zip(&sized)
-            .map(|((stroke, _), s)| stroke * s.diameter * s.contraction_frequency)
+            .map(|((stroke, ..), s)| stroke * s.diameter * s.contraction_frequency)
             .collect();
-        for ((s, (stroke, refill)), speed) in sized.iter().zip(&runs).zip(&speeds) {
+        for ((s, (stroke, refill, _)), speed) in sized.iter().zip(&runs).zip(&speeds) {
             println!(
                 "{} at {:.0} mm, {:.2} Hz: {stroke:.3} D a stroke, {:.1} mm/s, slowest {refill:+.3} D/s refilling",
                 animal.name,
@@ -1099,14 +1103,15 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
                 (by_hand, resized)
             })
             .collect();
-        let runs: Vec<((f32, u32), (f32, u32))> = std::thread::scope(|scope| {
+        type Run = (f32, f32, u32);
+        let runs: Vec<(Run, Run)> = std::thread::scope(|scope| {
             let handles: Vec<_> = pairs
                 .iter()
-                .map(|(a, b)| scope.spawn(move || (stroke_under_way(a), stroke_under_way(b))))
+                .map(|(a, b)| scope.spawn(move || (stroke_and_refill(a), stroke_and_refill(b))))
                 .collect();
             handles.into_iter().map(|h| h.join().unwrap()).collect()
         });
-        for ((by_hand, _), ((hand, restarts), (resized, _))) in pairs.iter().zip(&runs) {
+        for ((by_hand, _), ((hand, _, restarts), (resized, ..))) in pairs.iter().zip(&runs) {
             println!(
                 "{} at {:.0} mm: by its lengths {hand:.3} D a stroke ({restarts} restarts), \
                  resized {resized:.3} ({:+.1}%)",
@@ -1123,26 +1128,6 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
             );
         }
     }
-}
-
-/// Diameters a stroke over cycles 12 to 20 from rest at 60 Hz frames, and the times the
-/// slice was restarted.
-fn stroke_under_way(species: &Species) -> (f32, u32) {
-    let (from, to) = (12, 20);
-    let mut sim = SliceSim::new(species).unwrap();
-    let (mut start, mut end) = (0.0, 0.0);
-    while sim.cycle() < to {
-        sim.advance_with(1.0 / 60.0, |sim| {
-            if sim.phase() == 0.0 && sim.cycle() == from {
-                start = sim.swim_distance();
-            }
-            if sim.phase() == 0.0 && sim.cycle() == to {
-                end = sim.swim_distance();
-            }
-        });
-    }
-    let stroke = (end - start) / species.diameter / (to - from) as f32;
-    (stroke, sim.recoveries())
 }
 
 in_both_geometries!(fn a_startled_slice_escapes_then_eases_back);
