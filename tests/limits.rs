@@ -184,26 +184,34 @@ fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
 /// Pulls the fields that limits join into their joint ranges: proportions, then the
 /// vertex budget, then the cost budget, each by the least it takes.
 fn within_joint_limits(s: &mut Species) {
-    use bevy_jellyfish::species::limits::{MAX_COST_PER_SECOND, mesh_vertices, simulation_cost};
+    use bevy_jellyfish::species::limits::{
+        MAX_COST_PER_SECOND, mesh_vertices, simulation_cost, stiffest_bending,
+    };
     s.height = s.height.clamp(0.1 * s.diameter, 2.0 * s.diameter);
     s.thickness = s.thickness.min(0.5 * s.diameter.min(2.0 * s.height));
-    // A wall bending as a plate of its mesoglea takes the springs' range: thinned or
-    // thickened into it, or given the paper's springs where the proportions forbid it.
+    // The bending no stiffer than the bell's size holds: the springs' constant lowered, or a
+    // wall bending as a plate of its mesoglea thinned or thickened into the range (given the
+    // paper's springs where the proportions forbid it).
+    let stiffest = stiffest_bending(s.diameter);
     if s.bending == Bending::Mesoglea {
-        let springs = bevy_jellyfish::species::limits::of("angular_stiffness").unwrap();
+        let least = bevy_jellyfish::species::limits::of("angular_stiffness")
+            .unwrap()
+            .min;
         let thickness_for = |bending: f64| {
             let per = 12.0 * REFERENCE_HINGE_LENGTH as f64 / s.elastic_modulus as f64;
             (bending * per).cbrt() as f32
         };
         s.thickness = s
             .thickness
-            .clamp(thickness_for(springs.min), thickness_for(springs.max));
+            .clamp(thickness_for(least), thickness_for(stiffest));
+        let plate = s.bending_stiffness() as f64;
         if s.thickness > 0.5 * s.diameter.min(2.0 * s.height)
-            || !springs.admits(s.bending_stiffness() as f64)
+            || !(least..=stiffest).contains(&plate)
         {
             s.bending = Bending::Springs;
         }
     }
+    s.angular_stiffness = s.angular_stiffness.min(stiffest as f32);
     s.tentacle_length = s.tentacle_length.min(10.0 * s.diameter);
     s.tentacle_radius = s.tentacle_radius.min(0.05 * s.diameter);
     s.manubrium_length = s.manubrium_length.min(4.0 * s.diameter);

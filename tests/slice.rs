@@ -1081,8 +1081,9 @@ fn a_rower_rows_alike_at_every_size() {
 /// was restarted ten times in fourteen strokes and swam a sixth as far.
 fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
     let animals = [
-        (Species::aurelia(), [0.5, 2.0, 3.875].as_slice()),
-        (Species::aequorea(), [0.5, 2.0].as_slice()),
+        // 20 mm to an adult's 30 cm.
+        (Species::aurelia(), [0.5, 2.0, 3.875, 7.5].as_slice()),
+        (Species::aequorea(), [0.5, 2.0, 4.0].as_slice()),
         // Smaller still, its 0.3 mm tentacles are more than a twentieth of the diameter:
         // that is refused, named.
         (Species::sarsia(), [0.5, 2.0].as_slice()),

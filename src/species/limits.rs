@@ -102,7 +102,7 @@ pub const LIMITS: &[Limit] = &[
     limit!("thickness", 1e-4, 0.25, "m", "with at most half the diameter and the height (below): thicker walls fill the bell"),
     limit!("margin_thickness_ratio", 0.05, 1.0, "", "a thinner margin is a fringe of single points"),
     limit!("elastic_modulus", 10.0, 1e5, "Pa", "softer mesoglea cannot hold the bell against its water; stiffer, the hinges and hoops outrun the implicit step and the bell shivers"),
-    limit!("angular_stiffness", 1e-7, 1.0, "N·m/rad", "without bending the bell folds; far stiffer, the implicit step cannot keep up and the bell shivers (a 155 mm moon jelly's 19 mm apex needs 0.36)"),
+    limit!("angular_stiffness", 1e-7, 125.0, "N·m/rad", "without bending the bell folds; stiffer than 1, or than (D / 0.2 m)³ for a bell wider than 20 cm (below), the implicit step cannot keep up and the bell shivers (a 155 mm moon jelly's 19 mm apex needs 0.36, a metre-wide one's 97)"),
     limit!("mesoglea_resilience", 0.05, 1.0, "", "a bell that returns less of its energy barely re-expands; more than all of it is no material"),
     limit!("muscle_modulus", 1e3, 1e8, "Pa", "muscle fibres: soft gel to stiff collagen"),
     limit!("muscle_cross_section", 1e-5, 1.0, "", "a fraction of the wall"),
@@ -366,6 +366,15 @@ pub fn simulation_cost_terms(s: &Species) -> [f64; 3] {
 }
 
 /// Checks every field against the table, then the limits that join fields.
+/// The stiffest bending the implicit step keeps up with on a bell `diameter` wide, N·m/rad:
+/// 1, and for a bell wider than 20 cm (D / 0.2 m)³. A bigger bell takes a longer step and
+/// its points drag more water, which holds stiffer hinges: measured, an isometrically grown
+/// moon jelly (its plate as the size cubed) swims whole to a metre, where the fixed cap of
+/// 1 N·m/rad refused it above 22 cm; at 40 mm, 100 N·m/rad restarts it.
+pub fn stiffest_bending(diameter: f32) -> f64 {
+    (diameter as f64 / 0.2).powi(3).max(1.0)
+}
+
 pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
     for (field, value) in values(s) {
         of(field)
@@ -396,19 +405,39 @@ pub(super) fn validate(s: &Species) -> Result<(), SpeciesError> {
     // The mesoglea's own bending is held to the springs' limit: the implicit step meets
     // the same hinges either way.
     let springs = of("angular_stiffness").expect("a listed field");
+    let stiffest = stiffest_bending(s.diameter);
     let plate = s.bending_stiffness() as f64;
-    if s.bending == Bending::Mesoglea && !springs.admits(plate) {
+    if s.bending == Bending::Mesoglea && !(springs.min..=stiffest).contains(&plate) {
+        let remedy = if plate < springs.min {
+            "thicker or stiffer"
+        } else {
+            "thinner or softer"
+        };
         return joint(
             "bending",
             format!(
                 "the mesoglea bends as a plate, E·ϑ³/12 per 2 mm of hinge: {} N·m/rad from \
-                 elastic_modulus {} Pa and thickness {} m, outside {} ({}); make the wall \
-                 thinner or softer, or take bending: Springs",
+                 elastic_modulus {} Pa and thickness {} m, outside [{}, {}] N·m/rad for a \
+                 bell {} m wide ({}); make the wall {remedy}, or take bending: Springs",
                 trim(plate),
                 s.elastic_modulus,
                 s.thickness,
-                springs.range(),
+                trim(springs.min),
+                trim(stiffest),
+                s.diameter,
                 springs.why
+            ),
+        );
+    }
+    if s.bending == Bending::Springs && s.angular_stiffness as f64 > stiffest {
+        return joint(
+            "angular_stiffness",
+            format!(
+                "must be at most {} N·m/rad for a bell {} m wide ({}), got {}",
+                trim(stiffest),
+                s.diameter,
+                springs.why,
+                s.angular_stiffness
             ),
         );
     }
@@ -550,7 +579,7 @@ mod tests {
         assert_eq!(of("viscosity").unwrap().range(), "[0.0001, 10] Pa·s");
         assert_eq!(
             of("angular_stiffness").unwrap().range(),
-            "[1e-7, 1] N·m/rad"
+            "[1e-7, 125] N·m/rad"
         );
     }
 }

@@ -149,6 +149,30 @@ fn the_bending_reads_and_writes_and_a_wrong_one_is_named() {
 }
 
 #[test]
+fn a_grown_animal_may_bend_as_stiffly_as_its_size_holds() {
+    use crate::species::limits::stiffest_bending;
+    // An adult moon jelly of 30 cm and one a metre wide, resized: the plate grows as the
+    // size cubed, and so does what the implicit step holds.
+    for d in [0.3, 1.0] {
+        let big = Species::aurelia().resized(d);
+        assert_eq!(big.validate(), Ok(()), "{d} m");
+        assert!(
+            big.bending_stiffness() as f64 <= 0.8 * stiffest_bending(d),
+            "{d} m"
+        );
+    }
+    // Springs stiffer than a 40 mm bell holds are refused by name, and the reason says
+    // what the bell's size allows.
+    let paper = Species {
+        angular_stiffness: 5.0,
+        ..Species::paper()
+    };
+    let err = paper.validate().unwrap_err();
+    assert_eq!(err.field(), Some("angular_stiffness"));
+    assert!(err.to_string().contains("at most 1 N·m/rad"), "{err}");
+}
+
+#[test]
 fn a_mesoglea_too_stiff_to_bend_is_named() {
     // A 25 cm moon jelly with a wall of 8 cm: E·ϑ³/12 per 2 mm is 25 N·m/rad.
     let s = Species {
@@ -159,6 +183,17 @@ fn a_mesoglea_too_stiff_to_bend_is_named() {
     };
     let err = s.validate().unwrap_err().to_string();
     assert!(err.contains("bending") && err.contains("plate"), "{err}");
+    assert!(err.contains("thinner or softer"), "{err}");
+    // A wall of a tenth of a millimetre hardly bends at all: refused the other way.
+    let thin = Species {
+        thickness: 1e-4,
+        ..Species::aurelia()
+    };
+    let err = thin.validate().unwrap_err().to_string();
+    assert!(
+        err.contains("bending") && err.contains("thicker or stiffer"),
+        "{err}"
+    );
     // With the paper's springs the same wall takes `angular_stiffness` and is valid.
     let springs = Species {
         bending: crate::species::Bending::Springs,
