@@ -43,8 +43,10 @@ pub(crate) fn grid_normals(buf: &mut SurfaceBuffers, rings: usize, segments: usi
 }
 
 /// Writes `n` normalised at `i`, unless it has no direction: then the normal there stays.
+/// (A vector whose square is subnormal has none that normalises to unit length: the cross
+/// product of two steps of a slice collapsed to a point.)
 fn keep(normals: &mut [[f32; 3]], i: usize, n: Vec3) {
-    if let Some(unit) = n.try_normalize() {
-        normals[i] = unit.to_array();
+    if n.length_squared() >= f32::MIN_POSITIVE {
+        normals[i] = n.normalize().to_array();
     }
 }

@@ -517,7 +517,13 @@ pub fn umbrella_vertex(b: Block, index: usize) -> Vertex {
     };
     let around = at(l, j + 1) - at(l, j + segments - 1);
     let along = at(l + 1, j) - at(l - 1, j);
-    let normal = around.cross(along).try_normalize().unwrap_or(analytic);
+    // As `grid_normals`: a subnormal square has no unit direction (the GPU flushes it).
+    let n = around.cross(along);
+    let normal = if n.length_squared() >= f32::MIN_POSITIVE {
+        n.normalize()
+    } else {
+        analytic
+    };
     Vertex {
         position,
         normal,
