@@ -5,9 +5,10 @@
 //!
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
-//! margin, outline (the exumbrella's widest, as a video shows the bell) and height; then each shipped species at other sizes, every length scaled
-//! and the pulse rate set to the animal's at that size, with its refill's slowest speed
-//! too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
+//! margin, outline (the exumbrella's widest, as a video shows the bell) and height, and the
+//! subumbrella's depth over its width (the cavity alone, as `SliceSim::bell_points` gives
+//! it); then each shipped species at other sizes, every length scaled and the pulse rate
+//! set to the animal's at that size, with its refill's slowest speed too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--finer N] [--set field=value …]`
 //! (`--set` changes every species, the paper's and the resized moon jellies too; `--finer`
@@ -40,14 +41,17 @@ struct Sample {
     /// The bell's outline (its exumbrella) at its widest.
     widest: f32,
     height: f32,
+    /// The subumbrella alone, as [`SliceSim::bell_points`] gives it: its depth (apex to
+    /// the margins' midpoint) over its width at its widest.
+    cavity: f32,
     /// The subumbrella's strain ([`SliceSim::meridian_strain`]).
     strain: f32,
 }
 
 /// The margin's width, the outline's widest (the subumbrella given its mesoglea, as the
 /// renderer draws the exumbrella) and the bell's height from apex to margin (the
-/// subumbrella's plus the apex's mesoglea), m.
-fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32) {
+/// subumbrella's plus the apex's mesoglea), m; and the subumbrella's depth over its width.
+fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32, f32) {
     let b = sim.bell_points();
     let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
     let margin = (right - left).length();
@@ -57,8 +61,12 @@ fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32) {
         .iter()
         .map(|p| (p.exumbrella[1].x - p.exumbrella[0].x).abs())
         .fold(margin, f32::max);
-    let height = apex.y - 0.5 * (left.y + right.y) + sim.species().thickness;
-    (margin, widest, height)
+    let depth = apex.y - 0.5 * (left.y + right.y);
+    let (least, most) = b.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+        (lo.min(p.x), hi.max(p.x))
+    });
+    let height = depth + sim.species().thickness;
+    (margin, widest, height, depth / (most - least).max(1e-9))
 }
 
 /// `strokes` strokes from rest, a sample after every fixed step (`finer` times the
@@ -77,7 +85,7 @@ fn from_rest(species: &Species, strokes: u32, finer: u32) -> Vec<Sample> {
     let end = strokes as f32 * species.period();
     while sim.time() < end {
         sim.advance_with(1.0 / 60.0, |sim| {
-            let (margin, widest, height) = shape(sim, &mut profile);
+            let (margin, widest, height, cavity) = shape(sim, &mut profile);
             let x = sim.swim_distance() / d;
             let dt = sim.time() - time;
             samples.push(Sample {
@@ -88,6 +96,7 @@ fn from_rest(species: &Species, strokes: u32, finer: u32) -> Vec<Sample> {
                 margin: margin / d,
                 widest: widest / d,
                 height: height / d,
+                cavity,
                 strain: sim.meridian_strain(),
             });
             time = sim.time();
@@ -148,6 +157,11 @@ fn contracted(samples: &[Sample], k: u32) -> (f32, f32, f32) {
     cycle(samples, k).fold((f32::MAX, f32::MAX, 0.0f32), |(m, w, h), (_, x)| {
         (m.min(x.margin), w.min(x.widest), h.max(x.height))
     })
+}
+
+/// The subumbrella's greatest depth over its width over stroke `k`.
+fn deepest(samples: &[Sample], k: u32) -> f32 {
+    cycle(samples, k).fold(0.0f32, |c, (_, x)| c.max(x.cavity))
 }
 
 /// The subumbrella's greatest strain over stroke `k`.
@@ -222,9 +236,9 @@ fn main() {
     let runs = from_rest_all(species, strokes, finer);
 
     println!(
-        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted (rest) | subumbrella stretched |"
+        "| species | strokes 1-3 from rest (D) | D per stroke, under way | slowest in the refill (D/s) | margin contracted | outline contracted | height contracted (rest) | subumbrella depth / width contracted (rest) | subumbrella stretched |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for (s, samples) in &runs {
         let strokes = per_stroke(samples);
         let steady = under_way_per_stroke(samples);
@@ -232,10 +246,12 @@ fn main() {
         let (margin, widest, height) = contracted(samples, under_way);
         let first: Vec<String> = strokes.iter().take(3).map(|d| format!("{d:.3}")).collect();
         println!(
-            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} ({:.2}) | {:+.0}% |",
+            "| {} | {} | {steady:.3} | {refill:+.3} | {margin:.2} | {widest:.2} | {height:.2} ({:.2}) | {:.2} ({:.2}) | {:+.0}% |",
             s.name,
             first.join(", "),
             samples[0].height,
+            deepest(samples, under_way),
+            samples[0].cavity,
             100.0 * stretched(samples, under_way),
         );
     }
