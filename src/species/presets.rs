@@ -9,11 +9,11 @@ use super::{
 impl Species {
     /// The moon jelly, *Aurelia aurita*, a young medusa of 40 mm shaped and timed from
     /// records of the animal (`assets/species/aurelia.species.ron`, `docs/physics.md`
-    /// section 5): a saucer a quarter as tall as it is wide that contracts quickly and
-    /// refills slowly, in the axisymmetric slice whose ring wake it rows with.
+    /// section 5): a saucer a quarter as deep as it is wide that contracts quickly to a
+    /// half-dome and refills slowly, in the axisymmetric slice whose ring wake it rows with.
     pub fn aurelia() -> Self {
-        // Apex mesoglea of 5 mm (below), plate bending E·ϑ³/12 per 2 mm hinge as `paper`.
-        let thickness = 0.005;
+        // Apex mesoglea of 3 mm (below), plate bending E·ϑ³/12 per 2 mm hinge as `paper`.
+        let thickness = 0.003;
         Self {
             name: "Aurelia".into(),
             // A body of revolution rows with vortex rings; the planar slice's vortex pairs
@@ -28,11 +28,13 @@ impl Species {
             // (`docs/numerics.md`).
             domain_diameters: 3.5,
             boundary_width: 0.25,
-            // A 15.5 cm animal recorded by Dabiri (2011), as the SimpleAurelia model
-            // prescribes it: 40.5 mm from apex to margin, 19.3 mm of it mesoglea on the
-            // axis; so a subumbrellar cavity 0.135 D deep under an apex 0.125 D thick, the
-            // whole bell 0.26 D tall.
-            height: 0.0054,
+            // A saucer: its subumbrella 0.26 D deep, as the 15.5 cm animal Dabiri recorded
+            // (2011; 40.5 mm from apex to margin on 156.5 mm, as the SimpleAurelia model
+            // prescribes it) and the 0.25–0.3 of *Aurelia*'s bells generally, under an apex
+            // of mesoglea 0.075 D thick (the record's 0.125 D lens, thinned where the slice
+            // would otherwise be a third deeper than the animal seen from outside: the
+            // whole bell 0.34 D tall; `docs/physics.md` section 5).
+            height: 0.0104,
             thickness,
             // The bell bends as a plate of its mesoglea, E·ϑ³/12, so resized or stiffened it
             // keeps a rigidity that fits it; the springs' constant below is the same number
@@ -62,11 +64,16 @@ impl Species {
             // A force generator: the bell's stroke, its refill and its best pulse rate are
             // outcomes of the muscle's pull against the bell and its water.
             muscle_law: MuscleLaw::Force,
-            // Its swimming muscle lines the outer half of the subumbrella: the centre holds
-            // the stomach, the gastric pouches and the four gonads that ring them. (With the
-            // paper's three quarters the upper bell squeezed its own stroke: 0.43 D a
-            // stroke against 0.47, `docs/physics.md` section 5.)
-            muscle_extent: 0.5,
+            // Its swimming (coronal) muscle is a band on the margin's quarter of the
+            // subumbrella's arc, outside the ring of gonads and gastric pouches: held open by
+            // its own hoops the upper bell bulges over a margin the band pulls in, and the
+            // cavity contracts to about a half-dome (0.6 of its width deep) where a muscle
+            // over the outer half drew it 0.9 deep (`docs/physics.md` section 5).
+            muscle_extent: 0.25,
+            // The band pulls to 0.62 of its length, so the margin closes to 0.62 of its
+            // rest width, near the animal's 0.64 (Bajcar et al. 2009: the radius varies by
+            // about 36%); the paper's 0.56 closed this saucer's margin to 0.57.
+            contraction_ratio: 0.62,
             // Hundreds of short marginal tentacles, an eighth of the bell long, each a
             // slender cylinder in the water.
             tentacle_count: 200,
