@@ -8,7 +8,8 @@
 //! margin, outline (the exumbrella's widest, as a video shows the bell) and height, and the
 //! subumbrella's depth over its width (the cavity alone, as `SliceSim::bell_points` gives
 //! it); then each shipped species at other sizes, every length scaled and the pulse rate
-//! set to the animal's at that size, with its refill's slowest speed too. Writes `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
+//! set to the animal's at that size, with its refill's slowest speed too. Writes
+//! `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--finer N] [--set field=value …]`
 //! (`--set` changes every species, the paper's and the resized moon jellies too; `--finer`

@@ -68,11 +68,11 @@ impl Species {
             // subumbrella's arc, outside the ring of gonads and gastric pouches: held open by
             // its own hoops the upper bell bulges over a margin the band pulls in, and the
             // cavity contracts to about a half-dome (0.6 of its width deep) where a muscle
-            // over the outer half drew it 0.9 deep (`docs/physics.md` section 5).
+            // over the outer half draws it 0.77 deep (`docs/physics.md` section 5).
             muscle_extent: 0.25,
             // The band pulls to 0.62 of its length, so the margin closes to 0.62 of its
             // rest width, near the animal's 0.64 (Bajcar et al. 2009: the radius varies by
-            // about 36%); the paper's 0.56 closed this saucer's margin to 0.57.
+            // about 36%); the paper's 0.56 closes this saucer's margin to 0.56.
             contraction_ratio: 0.62,
             // Hundreds of short marginal tentacles, an eighth of the bell long, each a
             // slender cylinder in the water.
