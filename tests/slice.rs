@@ -1006,6 +1006,43 @@ fn stroke_and_refill(species: &Species) -> (f32, f32, u32) {
 }
 
 #[test]
+/// The moon jelly as the headless API draws it (`bell_points`, its subumbrella): a saucer
+/// whose cavity is a quarter to three tenths as deep as it is wide at rest, contracting
+/// to about a half-dome with its margin at 0.6–0.8 of its rest width (*Aurelia*:
+/// 0.25–0.3, about 0.5, 0.64–0.76; `docs/physics.md` section 5). The moon jelly before
+/// 2026-12-04 fails it: a cavity 0.14 deep drawn 0.76 deep, its margin at 0.57.
+fn the_moon_jelly_contracts_from_a_saucer_to_about_a_half_dome() {
+    let s = Species::aurelia();
+    let mut sim = SliceSim::new(&s).unwrap();
+    // Depth (apex to the margins' midpoint) over width at the widest, and margin width.
+    let shape = |sim: &SliceSim| {
+        let b = sim.bell_points();
+        let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
+        let (least, most) = b.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+            (lo.min(p.x), hi.max(p.x))
+        });
+        let depth = apex.y - 0.5 * (left.y + right.y);
+        (depth / (most - least), (right - left).length())
+    };
+    let (rest, rest_margin) = shape(&sim);
+    let (mut deepest, mut narrowest) = (0.0f32, f32::MAX);
+    while sim.cycle() < 12 {
+        sim.advance_with(1.0 / 60.0, |sim| {
+            if sim.cycle() >= 8 {
+                let (cavity, margin) = shape(sim);
+                deepest = deepest.max(cavity);
+                narrowest = narrowest.min(margin / rest_margin);
+            }
+        });
+    }
+    println!("cavity {rest:.3} at rest, {deepest:.3} contracted; margin {narrowest:.3}");
+    assert!((0.25..=0.3).contains(&rest), "at rest {rest}");
+    assert!((0.45..=0.7).contains(&deepest), "contracted {deepest}");
+    assert!((0.6..=0.8).contains(&narrowest), "margin {narrowest}");
+    assert_eq!(sim.recoveries(), 0);
+}
+
+#[test]
 #[ignore = "long: the two rowers at three and four sizes, 20 strokes each"]
 /// Issue 28: a rower grown or shrunk (`Species::resized`: every length scaled, beating at
 /// its animal's rate for the size) still rows as the animal does. Its distance a stroke
