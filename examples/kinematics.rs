@@ -23,6 +23,7 @@ mod plot;
 
 use bevy_jellyfish::shape::profile::Profile;
 use bevy_jellyfish::sim::clock::FixedClock;
+use bevy_jellyfish::sim::inspect::cavity;
 use bevy_jellyfish::{SliceSim, Species};
 use common::{overrides, shipped_species, with_overrides};
 use plot::{Chart, Series};
@@ -62,12 +63,8 @@ fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32, f32) {
         .iter()
         .map(|p| (p.exumbrella[1].x - p.exumbrella[0].x).abs())
         .fold(margin, f32::max);
-    let depth = apex.y - 0.5 * (left.y + right.y);
-    let (least, most) = b.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-        (lo.min(p.x), hi.max(p.x))
-    });
-    let height = depth + sim.species().thickness;
-    (margin, widest, height, depth / (most - least).max(1e-9))
+    let height = apex.y - 0.5 * (left.y + right.y) + sim.species().thickness;
+    (margin, widest, height, cavity(b).0)
 }
 
 /// `strokes` strokes from rest, a sample after every fixed step (`finer` times the

@@ -7,7 +7,7 @@
 mod common;
 
 use bevy_jellyfish::sim::clock::FixedClock;
-use bevy_jellyfish::sim::inspect::{Outline, contains};
+use bevy_jellyfish::sim::inspect::{Outline, cavity, contains};
 use bevy_jellyfish::{MuscleTiming, SliceGeometry, SliceSim, Species};
 use glam::Vec2;
 
@@ -1014,16 +1014,7 @@ fn stroke_and_refill(species: &Species) -> (f32, f32, u32) {
 fn the_moon_jelly_contracts_from_a_saucer_to_about_a_half_dome() {
     let s = Species::aurelia();
     let mut sim = SliceSim::new(&s).unwrap();
-    // Depth (apex to the margins' midpoint) over width at the widest, and margin width.
-    let shape = |sim: &SliceSim| {
-        let b = sim.bell_points();
-        let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
-        let (least, most) = b.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-            (lo.min(p.x), hi.max(p.x))
-        });
-        let depth = apex.y - 0.5 * (left.y + right.y);
-        (depth / (most - least), (right - left).length())
-    };
+    let shape = |sim: &SliceSim| cavity(sim.bell_points());
     let (rest, rest_margin) = shape(&sim);
     let (mut deepest, mut narrowest) = (0.0f32, f32::MAX);
     while sim.cycle() < 12 {

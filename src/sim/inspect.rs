@@ -6,5 +6,5 @@
 //! [`SliceSim::outline`](super::SliceSim::outline). Not semver-stable: these follow the
 //! numerics and may change in any release.
 
-pub use super::body::{Body, Outline, contains};
+pub use super::body::{Body, Outline, cavity, contains};
 pub use super::fluid::Fluid;

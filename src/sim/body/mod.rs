@@ -21,7 +21,7 @@ mod tentacle;
 
 pub(crate) use depth::Depth;
 pub(crate) use elements::{Hinge, HoopBend, Muscle, Spring};
-pub use outline::{Outline, contains, outward_normals};
+pub use outline::{Outline, cavity, contains, outward_normals};
 pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;

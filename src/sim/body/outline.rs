@@ -109,6 +109,21 @@ fn crosses_itself_pairwise(points: &[Vec2]) -> bool {
     false
 }
 
+/// The subumbrella's shape as `SliceSim::bell_points` gives it (margin, apex, margin):
+/// its depth (apex to the margins' midpoint) over its width at its widest, and the
+/// margin's width, m. The measure *Aurelia*'s records use for a saucer and a half-dome.
+pub fn cavity(bell: &[Vec2]) -> (f32, f32) {
+    let (Some(&left), Some(&right)) = (bell.first(), bell.last()) else {
+        return (0.0, 0.0);
+    };
+    let apex = bell[bell.len() / 2];
+    let (least, most) = bell.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+        (lo.min(p.x), hi.max(p.x))
+    });
+    let depth = apex.y - 0.5 * (left.y + right.y);
+    (depth / (most - least).max(1e-9), (right - left).length())
+}
+
 /// Whether `p` lies inside the closed polygon through `points` (even–odd rule).
 pub fn contains(points: &[Vec2], p: Vec2) -> bool {
     let crosses = |a: Vec2, b: Vec2| {

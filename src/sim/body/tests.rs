@@ -461,3 +461,20 @@ fn the_muscle_lines_the_bell_from_the_margin_as_far_as_its_extent() {
 fn rings_to_apex(species: &Species) -> usize {
     Body::new(species, Vec2::new(0.0, 0.2), 0.002).bell.len() / 2
 }
+
+/// A half circle is a half-dome (depth half its width), a straight line no cavity, and an
+/// empty bell measures nothing rather than panicking.
+#[test]
+fn a_half_circle_is_a_cavity_half_as_deep_as_wide() {
+    let arc: Vec<Vec2> = (0..=24)
+        .map(|k| {
+            let a = std::f32::consts::PI * k as f32 / 24.0;
+            Vec2::new(-a.cos(), a.sin())
+        })
+        .collect();
+    let (depth, margin) = super::cavity(&arc);
+    assert!((depth - 0.5).abs() < 1e-5 && (margin - 2.0).abs() < 1e-5);
+    let flat: Vec<Vec2> = (0..5).map(|k| Vec2::new(k as f32, 0.0)).collect();
+    assert_eq!(super::cavity(&flat).0, 0.0);
+    assert_eq!(super::cavity(&[]), (0.0, 0.0));
+}
