@@ -5,7 +5,8 @@
 //!
 //! Prints, per species: distance per stroke from rest and under way, the slowest speed
 //! while the bell refills once under way (negative: it drifts backwards), the contracted
-//! margin, outline (the exumbrella's widest, as a video shows the bell) and height, and the
+//! margin, outline (the exumbrella's widest, as a video shows the bell, over its own width
+//! at rest as a video measures it) and height, and the
 //! subumbrella's depth over its width (the cavity alone, as `SliceSim::bell_points` gives
 //! it); then each shipped species at other sizes, every length scaled and the pulse rate
 //! set to the animal's at that size, with its refill's slowest speed too. Writes
@@ -40,7 +41,9 @@ struct Sample {
     /// Over the last step, diameters per second.
     speed: f32,
     margin: f32,
-    /// The bell's outline (its exumbrella) at its widest.
+    /// The bell's outline (its exumbrella) at its widest, over its widest at rest: what a
+    /// video of the animal measures (at rest the mesoglea of the flanks stands past the
+    /// margin, so over the rest diameter it reads larger).
     widest: f32,
     height: f32,
     /// The subumbrella alone, as [`SliceSim::bell_points`] gives it: its depth (apex to
@@ -79,6 +82,7 @@ fn from_rest(species: &Species, strokes: u32, finer: u32) -> Vec<Sample> {
     let d = species.diameter;
     let mut samples = Vec::new();
     let mut profile = Profile::default();
+    let rest_widest = shape(&sim, &mut profile).1;
     let (mut time, mut distance) = (0.0f32, 0.0f32);
     let end = strokes as f32 * species.period();
     while sim.time() < end {
@@ -92,7 +96,7 @@ fn from_rest(species: &Species, strokes: u32, finer: u32) -> Vec<Sample> {
                 distance: x,
                 speed: if dt > 0.0 { (x - distance) / dt } else { 0.0 },
                 margin: margin / d,
-                widest: widest / d,
+                widest: widest / rest_widest,
                 height: height / d,
                 cavity,
                 strain: sim.meridian_strain(),
@@ -369,7 +373,7 @@ fn main() {
         ),
         shape_chart(
             "Moon jelly, under way: outline",
-            "widest / rest diameter",
+            "widest / widest at rest",
             |x| x.widest,
             rec.iter().map(|r| (r.0, r.2)).collect(),
         ),
@@ -423,7 +427,7 @@ fn main() {
     let written = std::fs::File::create(&csv).and_then(|mut f| {
         writeln!(
             f,
-            "species,diameter_m,time_s,strokes,distance_d,speed_d_per_s,margin_d,widest_d,height_d"
+            "species,diameter_m,time_s,strokes,distance_d,speed_d_per_s,margin_d,widest_of_rest,height_d"
         )?;
         for (s, samples) in runs.iter().chain(&resized_runs) {
             for x in samples {

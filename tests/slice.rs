@@ -6,6 +6,7 @@
 
 mod common;
 
+use bevy_jellyfish::shape::profile::Profile;
 use bevy_jellyfish::sim::clock::FixedClock;
 use bevy_jellyfish::sim::inspect::{Outline, cavity, contains};
 use bevy_jellyfish::{MuscleTiming, SliceGeometry, SliceSim, Species};
@@ -1009,27 +1010,47 @@ fn stroke_and_refill(species: &Species) -> (f32, f32, u32) {
 /// The moon jelly as the headless API draws it (`bell_points`, its subumbrella): a saucer
 /// whose cavity is a quarter to three tenths as deep as it is wide at rest, contracting
 /// to about a half-dome with its margin at 0.6–0.8 of its rest width (*Aurelia*:
-/// 0.25–0.3, about 0.5, 0.64–0.76; `docs/physics.md` section 5). The moon jelly before
-/// 2026-12-04 fails it: a cavity 0.14 deep drawn 0.76 deep, its margin at 0.57.
+/// 0.25–0.3, about 0.5, 0.64–0.76; `docs/physics.md` section 5); and as a video sees it,
+/// its outline (the exumbrella the shape layer draws around that subumbrella) narrowing to
+/// 0.64–0.8 of its own width at rest (Bajcar et al. 2009: 0.64; Dabiri's animal: 0.757).
+/// The moon jelly before 2026-12-04 fails it: a cavity 0.14 deep drawn 0.76 deep, its
+/// margin at 0.57.
 fn the_moon_jelly_contracts_from_a_saucer_to_about_a_half_dome() {
     let s = Species::aurelia();
     let mut sim = SliceSim::new(&s).unwrap();
+    let mut profile = Profile::default();
+    let mut widest = |sim: &SliceSim| {
+        let b = sim.bell_points();
+        profile.build(b, b, sim.species(), b.len() / 2);
+        profile
+            .pairs
+            .iter()
+            .map(|p| (p.exumbrella[1].x - p.exumbrella[0].x).abs())
+            .fold(0.0f32, f32::max)
+    };
     let shape = |sim: &SliceSim| cavity(sim.bell_points());
     let (rest, rest_margin) = shape(&sim);
-    let (mut deepest, mut narrowest) = (0.0f32, f32::MAX);
+    let rest_outline = widest(&sim);
+    let (mut deepest, mut narrowest, mut outline) = (0.0f32, f32::MAX, f32::MAX);
     while sim.cycle() < 12 {
         sim.advance_with(1.0 / 60.0, |sim| {
             if sim.cycle() >= 8 {
                 let (cavity, margin) = shape(sim);
                 deepest = deepest.max(cavity);
                 narrowest = narrowest.min(margin / rest_margin);
+                outline = outline.min(widest(sim) / rest_outline);
             }
         });
     }
-    println!("cavity {rest:.3} at rest, {deepest:.3} contracted; margin {narrowest:.3}");
+    println!(
+        "cavity {rest:.3} at rest, {deepest:.3} contracted; margin {narrowest:.3}; \
+         outline {outline:.3} of its {:.3} D at rest",
+        rest_outline / s.diameter
+    );
     assert!((0.25..=0.3).contains(&rest), "at rest {rest}");
     assert!((0.45..=0.7).contains(&deepest), "contracted {deepest}");
     assert!((0.6..=0.8).contains(&narrowest), "margin {narrowest}");
+    assert!((0.64..=0.8).contains(&outline), "outline {outline}");
     assert_eq!(sim.recoveries(), 0);
 }
 
