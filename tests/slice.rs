@@ -1022,11 +1022,7 @@ fn the_moon_jelly_contracts_from_a_saucer_to_about_a_half_dome() {
     let mut widest = |sim: &SliceSim| {
         let b = sim.bell_points();
         profile.build(b, b, sim.species(), b.len() / 2);
-        profile
-            .pairs
-            .iter()
-            .map(|p| (p.exumbrella[1].x - p.exumbrella[0].x).abs())
-            .fold(0.0f32, f32::max)
+        profile.widest()
     };
     let shape = |sim: &SliceSim| cavity(sim.bell_points());
     let (rest, rest_margin) = shape(&sim);

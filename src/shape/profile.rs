@@ -79,6 +79,16 @@ impl Profile {
             .last()
             .expect("Profile::build makes at least two pairs")
     }
+
+    /// The bell's widest extent across its axis as seen from outside (the exumbrella's),
+    /// metres: the diameter a video of the animal measures. At rest it is wider than the
+    /// subumbrella's margin by at least the margin's mesoglea on each side.
+    pub fn widest(&self) -> f32 {
+        self.pairs
+            .iter()
+            .map(|p| p.exumbrella[0].distance(p.exumbrella[1]))
+            .fold(0.0, f32::max)
+    }
 }
 
 /// How far a pair has closed: `(1 − span/rest_span) / (1 − ratio)`, clamped to [0, 1].
@@ -118,6 +128,28 @@ mod tests {
             }
         }
         assert!(profile.pairs[0].exumbrella[0].y > profile.pairs[0].subumbrella[0].y);
+    }
+
+    #[test]
+    fn the_bell_seen_from_outside_is_wider_than_its_margin() {
+        let sp = Species::aurelia();
+        let slice = SliceOutline::rest(&sp, 25, 12);
+        let mut profile = Profile::default();
+        profile.build(&slice.bell, &slice.rest_bell, &sp, 12);
+        let margin = profile.margin();
+        let span = margin.subumbrella[0].distance(margin.subumbrella[1]);
+        let outside = margin.exumbrella[0].distance(margin.exumbrella[1]);
+        // The outline at the margin stands a wall's thickness out on each side, and the
+        // flanks' thicker mesoglea may stand further out still.
+        assert!(outside > span + mesoglea_thickness(&sp, 1.0));
+        let widest = profile.widest();
+        assert!(widest >= outside);
+        let spans = profile
+            .pairs
+            .iter()
+            .map(|p| p.exumbrella[0].distance(p.exumbrella[1]));
+        assert!(spans.clone().all(|w| w <= widest) && spans.clone().any(|w| w == widest));
+        assert_eq!(Profile::default().widest(), 0.0);
     }
 
     #[test]
