@@ -108,13 +108,19 @@ mod tests {
     use super::*;
     use crate::shape::outline::SliceOutline;
 
-    #[test]
-    fn exumbrella_lies_one_mesoglea_thickness_outside() {
+    /// The moon jelly's rest slice of 25 points, resampled into `rings` pairs.
+    fn rest_profile(rings: usize) -> (Species, SliceOutline, Profile) {
         let sp = Species::aurelia();
         let slice = SliceOutline::rest(&sp, 25, 12);
         let mut profile = Profile::default();
+        profile.build(&slice.bell, &slice.rest_bell, &sp, rings);
+        (sp, slice, profile)
+    }
+
+    #[test]
+    fn exumbrella_lies_one_mesoglea_thickness_outside() {
         // With as many rings as original pairs, the pairs are the original points.
-        profile.build(&slice.bell, &slice.rest_bell, &sp, 12);
+        let (sp, slice, profile) = rest_profile(12);
         for (k, pair) in profile.pairs.iter().enumerate() {
             let s = k as f32 / 12.0;
             let t = mesoglea_thickness(&sp, s);
@@ -132,10 +138,7 @@ mod tests {
 
     #[test]
     fn the_bell_seen_from_outside_is_wider_than_its_margin() {
-        let sp = Species::aurelia();
-        let slice = SliceOutline::rest(&sp, 25, 12);
-        let mut profile = Profile::default();
-        profile.build(&slice.bell, &slice.rest_bell, &sp, 12);
+        let (sp, _, profile) = rest_profile(12);
         let margin = profile.margin();
         let span = margin.subumbrella[0].distance(margin.subumbrella[1]);
         let outside = margin.exumbrella[0].distance(margin.exumbrella[1]);
@@ -154,10 +157,7 @@ mod tests {
 
     #[test]
     fn resampling_keeps_a_symmetric_slice_symmetric() {
-        let sp = Species::aurelia();
-        let slice = SliceOutline::rest(&sp, 25, 12);
-        let mut profile = Profile::default();
-        profile.build(&slice.bell, &slice.rest_bell, &sp, 37);
+        let (_, _, profile) = rest_profile(37);
         assert_eq!(profile.pairs.len(), 38);
         for pair in &profile.pairs {
             let mirror = |v: Vec2| Vec2::new(-v.x, v.y);
