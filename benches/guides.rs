@@ -44,8 +44,10 @@ fn species_step(c: &mut Criterion, name: &str, species: Species) {
         points: 2,
     };
     let (style, apex) = (OralStyle::of(&species), view.bell[view.bell.len() / 2]);
-    let mut stalk = GuideChains::hanging(1, Hanging::MANUBRIUM);
-    let mut arms = GuideChains::hanging(tubes - 1, Hanging::ORAL_ARM);
+    // None where the tubes hang within the cavity (*Aequorea*'s lips).
+    let stalks = (tubes > 0 && species.manubrium_length > 0.0) as usize;
+    let mut stalk = GuideChains::hanging(stalks, Hanging::MANUBRIUM);
+    let mut arms = GuideChains::hanging(tubes - stalks, Hanging::ORAL_ARM);
     let (mut oral_reference, mut oral_water, mut oral_offsets) =
         (Vec::new(), Vec::new(), Vec::new());
     let dt = species.step_length();
@@ -71,7 +73,7 @@ fn species_step(c: &mut Criterion, name: &str, species: Species) {
         });
         let oral = (view.oral_arms, apex, centroid);
         oral::guide_reference(&layout, &style, oral.0, oral.1, oral.2, &mut oral_reference);
-        let (k, chain) = (GUIDE_NODES, &oral_reference);
+        let (k, chain) = (stalks * GUIDE_NODES, &oral_reference);
         oral_offsets.clear();
         oral_offsets.extend_from_slice(stalk.offsets());
         oral_offsets.extend_from_slice(arms.offsets());

@@ -191,12 +191,23 @@ impl Species {
     }
 
     /// Guide chains the manubrium and the oral arms are drawn with: one per tube
-    /// ([`limits::oral_tubes`]), none when the species has no guides (`tentacle_guides:
-    /// 0`) and the hanging parts follow the slice alone.
+    /// ([`limits::oral_tubes`]). None, and the hanging parts follow the slice alone, when
+    /// the species has no guides (`tentacle_guides: 0`) or when its tubes hang no deeper
+    /// than its subumbrella ([`Self::oral_tubes_within_cavity`]).
     pub fn oral_guide_count(&self) -> usize {
-        if self.tentacle_guides == 0 {
+        if self.tentacle_guides == 0 || self.oral_tubes_within_cavity() {
             return 0;
         }
         super::limits::oral_tubes(self).min(super::limits::MAX_DRAWN_ORAL_TUBES)
+    }
+
+    /// Whether the manubrium and the oral arms, hanging from the subumbrellar apex, reach
+    /// no deeper than the subumbrella at rest (`manubrium_length + oral_arm_length ≤
+    /// height`; *Aequorea*'s short lips). Within the cavity they hang in the water the
+    /// bell carries with it: the currents the slice cannot see, and the body's turns,
+    /// hardly reach them there, and what the slice's own water does to them the slice
+    /// already draws.
+    pub fn oral_tubes_within_cavity(&self) -> bool {
+        self.manubrium_length + self.oral_arm_length <= self.height
     }
 }

@@ -256,7 +256,8 @@ impl Species {
             // in the animal; tentacles "from half to twice as many"). The animal's stomach
             // is "half as wide as disc", a shallow dish on the subumbrella: the manubrium
             // is drawn as a hanging tube, and one that wide pokes through the contracted
-            // apex, so it keeps the tube's 4 mm.
+            // apex, so it keeps the tube's 4 mm. Stomach and lips reach 7 mm, within the
+            // 9 mm cavity: they follow the slice alone (`oral_tubes_within_cavity`).
             manubrium_length: 0.003,
             manubrium_radius: 0.004,
             oral_arm_count: 12,

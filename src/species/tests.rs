@@ -422,3 +422,31 @@ fn a_resized_animal_keeps_its_shape_and_beats_at_its_rate_for_the_size() {
         assert_eq!(big.validate(), Ok(()), "{}", s.name);
     }
 }
+
+/// Oral tubes that hang no deeper than the subumbrella follow the slice alone: the moon
+/// jelly's long arms and *Sarsia*'s manubrium reach out below the bell and get a guide
+/// each, *Aequorea*'s short lips stay in its cavity and get none, until they are made
+/// longer than the cavity is deep.
+#[test]
+fn only_oral_tubes_that_reach_out_of_the_cavity_get_guides() {
+    assert_eq!(Species::aurelia().oral_guide_count(), 5);
+    assert_eq!(Species::sarsia().oral_guide_count(), 1);
+    let lips = Species::aequorea();
+    assert!(lips.oral_tubes_within_cavity());
+    assert_eq!(lips.oral_guide_count(), 0);
+    let longer = Species {
+        oral_arm_length: lips.height,
+        ..lips.clone()
+    };
+    assert_eq!(
+        longer.oral_guide_count(),
+        13,
+        "its manubrium and twelve arms"
+    );
+    // No guides at all: none for the tubes either, however long.
+    let unguided = Species {
+        tentacle_guides: 0,
+        ..Species::aurelia()
+    };
+    assert_eq!(unguided.oral_guide_count(), 0);
+}
