@@ -201,6 +201,8 @@ fn sarsia_like() -> Species {
         height: 0.045,
         diameter: 0.03,
         tentacle_count: 4,
+        // Arms that reach out of its deep cavity, so that they have guides.
+        oral_arm_length: 0.06,
         structural_abs: true,
         ..Species::aurelia()
     }
