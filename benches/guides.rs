@@ -45,7 +45,7 @@ fn species_step(c: &mut Criterion, name: &str, species: Species) {
     };
     let (style, apex) = (OralStyle::of(&species), view.bell[view.bell.len() / 2]);
     // None where the tubes hang within the cavity (*Aequorea*'s lips).
-    let stalks = (tubes > 0 && species.manubrium_length > 0.0) as usize;
+    let stalks = (tubes > 0 && style.is_manubrium(0)) as usize;
     let mut stalk = GuideChains::hanging(stalks, Hanging::MANUBRIUM);
     let mut arms = GuideChains::hanging(tubes - stalks, Hanging::ORAL_ARM);
     let (mut oral_reference, mut oral_water, mut oral_offsets) =

@@ -61,7 +61,7 @@ fn shape(sim: &SliceSim, profile: &mut Profile) -> (f32, f32, f32, f32) {
     let (left, right, apex) = (b[0], b[b.len() - 1], b[b.len() / 2]);
     let margin = (right - left).length();
     profile.build(b, b, sim.species(), b.len() / 2);
-    let widest = profile.widest().max(margin);
+    let widest = profile.widest();
     let height = apex.y - 0.5 * (left.y + right.y) + sim.species().thickness;
     (margin, widest, height, cavity(b).0)
 }
