@@ -210,7 +210,7 @@ impl Around {
             .filter(|(.., of)| !restarted.contains(&of.0))
             .map(|(t, s, _)| (t.translation, s.radius))
             .collect();
-        kept.sort_by(super::by_position);
+        super::sort_by_position(&mut kept);
         let grid = Neighbours::of(&kept, cube(&kept));
         let widest = kept.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
         Self { kept, grid, widest }

@@ -45,7 +45,7 @@ pub(super) fn steer_schools(
         .iter()
         .map(|(_, s, motion, _)| (motion.pose.position, s.radius))
         .collect();
-    all.sort_by(super::by_position);
+    super::sort_by_position(&mut all);
     let widest = all.iter().fold(0.0f32, |r, (_, rq)| r.max(*rq));
     grid.refill(&all, cube(&all, NEIGHBOUR_REACH * widest));
     let grid = &*grid;
