@@ -10,6 +10,7 @@ use bevy_jellyfish::plugin::{
     AmbientWater, DetailLevels, JellyfishSettings, JellyfishSlice, Resting, Steering, SwimMotion,
     TankWater, Tier,
 };
+use bevy_jellyfish::sim::tank::TankFluid;
 use bevy_jellyfish::{Jellyfish, Species};
 use std::time::Duration;
 
@@ -237,6 +238,52 @@ fn a_stir_moves_jellyfish_near_it_and_not_those_far_away() {
         moved_far < 0.05 * moved_near && moved_far < 0.05 * diameter,
         "the far one moved {moved_far} (near {moved_near})"
     );
+}
+
+/// The tank's water steps on every `ticks_per_step`th fixed tick by the ticks' time
+/// together: after any number of ticks it is, bit for bit, the water stepped by hand that
+/// many times over, with every other tick (the default) and with every tick.
+#[test]
+fn the_tank_steps_once_every_ticks_per_step_fixed_ticks() {
+    for ticks_per_step in [2, 1] {
+        let (min, max, cell) = (Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 6.0, 4.0), 0.5);
+        let (at, radius, push) = (Vec3::new(0.5, 3.0, 0.0), 1.2, Vec3::new(1.0, 0.4, 0.0));
+        let mut app = app();
+        let mut tank = TankWater::new(min, max, cell);
+        (tank.jet_strength, tank.ticks_per_step) = (0.0, ticks_per_step);
+        tank.stir(at, radius, push);
+        app.insert_resource(tank);
+        app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+            1.0 / 64.0,
+        )));
+        let mut checked = 0;
+        for _ in 0..24 {
+            app.update();
+            let fixed = app.world().resource::<Time<Fixed>>();
+            let ticks = (fixed.elapsed().as_nanos() / fixed.timestep().as_nanos()) as u32;
+            let mut by_hand = TankFluid::new(min, max, cell);
+            by_hand.stir(at, radius, push);
+            let dt = fixed.timestep().as_secs_f32() * ticks_per_step as f32;
+            for _ in 0..ticks / ticks_per_step {
+                by_hand.step(dt);
+            }
+            let bits = |v: &[Vec3]| {
+                v.iter()
+                    .map(|v| v.to_array().map(f32::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            let water = app.world().resource::<TankWater>();
+            assert!(
+                bits(water.velocities()) == bits(by_hand.velocities()),
+                "after {ticks} ticks, stepping every {ticks_per_step}"
+            );
+            checked += usize::from(ticks >= 2 * ticks_per_step);
+        }
+        assert!(
+            checked > 10,
+            "{checked} updates checked after the water moved"
+        );
+    }
 }
 
 #[test]

@@ -223,6 +223,47 @@ mod tests {
         assert!(t.speed_max() < 0.05 * near, "the water comes to rest");
     }
 
+    /// A coarse tank's water barely depends on its step: stirred alike and stepped at 64
+    /// and at 32 steps a second, it is the same water a second and two seconds on to
+    /// within a few hundredths of its speed (the plugin steps every other fixed tick).
+    #[test]
+    fn the_water_barely_depends_on_the_step() {
+        let stirred = || {
+            let mut t = tank();
+            t.stir(Vec3::new(0.5, 3.0, -0.5), 1.5, Vec3::new(1.0, 0.5, 0.0));
+            t.stir(Vec3::new(-1.5, 5.0, 1.0), 1.0, Vec3::new(0.0, -0.8, 0.6));
+            t
+        };
+        let (mut fine, mut coarse) = (stirred(), stirred());
+        for seconds in 1..=2 {
+            for _ in 0..64 {
+                fine.step(1.0 / 64.0);
+            }
+            for _ in 0..32 {
+                coarse.step(1.0 / 32.0);
+            }
+            let rms = |t: &TankFluid| {
+                let sum: f32 = t.velocity.iter().map(|v| v.length_squared()).sum();
+                (sum / t.velocity.len() as f32).sqrt()
+            };
+            let apart: f32 = fine
+                .velocity
+                .iter()
+                .zip(&coarse.velocity)
+                .map(|(a, b)| a.distance_squared(*b))
+                .sum();
+            let apart = (apart / fine.velocity.len() as f32).sqrt();
+            let speed = rms(&fine);
+            println!(
+                "after {seconds} s: rms speed {speed:.4}, at half the steps {:.4}, apart {apart:.5} ({:.1}%)",
+                rms(&coarse),
+                100.0 * apart / speed
+            );
+            assert!(speed > 0.01, "the water still moves: {speed}");
+            assert!(apart < 0.05 * speed, "apart {apart}, speed {speed}");
+        }
+    }
+
     #[test]
     fn the_walls_hold_the_water_in() {
         let mut t = tank();
