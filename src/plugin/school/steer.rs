@@ -5,10 +5,13 @@
 //!
 //! A member decides its heading every [`STEER_EVERY`] ticks, the school's members in turn
 //! by their number: at Bevy's 64 Hz fixed rate that is 4 times a second, still more often
-//! than the second a stroke takes (and a jellyfish turns only while it strokes), and a
-//! tick pays for a sixteenth of a crowded tank's neighbours (at 1002 jellyfish, about 60
-//! within reach of each). At 16 times a second finding them was a fifth of the CPU of
-//! 10,002 jellyfish (`docs/benchmarks.md`).
+//! than the second a stroke takes (and a jellyfish turns only while it strokes). At 16
+//! times a second finding the neighbours was a fifth of the CPU of 10,002 jellyfish
+//! (`docs/benchmarks.md`). The schools steer on every other tick ([`STEER_TICKS`]), an
+//! eighth of the members each time (at 1002 jellyfish, about 60 within reach of each):
+//! gathering, sorting and filing every member's place is paid half as often (at 10,002,
+//! 0.55 ms of one thread each time), and a frame that takes two fixed ticks steers once,
+//! as the tank's water, which steps on every other tick too, steps once.
 
 use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, Swimmer};
@@ -27,6 +30,8 @@ const PUSH: f32 = 3.0;
 const NEAREST: usize = 7;
 /// A member decides its heading in one fixed tick of this many.
 pub(super) const STEER_EVERY: u32 = 16;
+/// The schools steer in one fixed tick of this many (a divisor of [`STEER_EVERY`]).
+const STEER_TICKS: u32 = 2;
 
 /// Sets every member's heading.
 pub(super) fn steer_schools(
@@ -37,8 +42,14 @@ pub(super) fn steer_schools(
     mut grid: Local<Neighbours>,
 ) {
     let t = time.elapsed_secs();
-    let turn = *tick % STEER_EVERY;
+    let this = *tick;
     *tick = tick.wrapping_add(1);
+    if !this.is_multiple_of(STEER_TICKS) {
+        return;
+    }
+    // The members whose turn it is: each decides once in STEER_EVERY ticks.
+    let turns = STEER_EVERY / STEER_TICKS;
+    let turn = (this / STEER_TICKS) % turns;
     // Where they are in the simulation (not where the last frame drew them), in one order
     // every run.
     let mut all: Vec<(Vec3, f32)> = members
@@ -54,7 +65,7 @@ pub(super) fn steer_schools(
     members.par_iter_mut().for_each_init(
         Vec::new,
         |nearest, (of, swimmer, motion, mut steering)| {
-            if swimmer.number % STEER_EVERY != turn {
+            if swimmer.number % turns != turn {
                 return;
             }
             let Ok((school, frame)) = schools.get(of.0) else {
