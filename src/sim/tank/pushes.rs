@@ -137,6 +137,7 @@ fn push_all(tank: Slab, first: i64, lanes: &mut Lanes, pending: &[Impulse]) {
         for k in planes {
             for j in rows.clone() {
                 let start = ((k - first) * s.y + j) as usize * lanes.stride;
+                let across = across(tank.centre(0, j, k) - imp.at);
                 let mut i = *along.start();
                 while i <= *along.end() {
                     let row = Row {
@@ -145,7 +146,7 @@ fn push_all(tank: Slab, first: i64, lanes: &mut Lanes, pending: &[Impulse]) {
                         first: i as f32,
                         count: (along.end() - i + 1).min(LANES as i64) as f32,
                         at: imp.at.x,
-                        across: across(tank.centre(0, j, k) - imp.at),
+                        across,
                         inverse_squared,
                         velocity: imp.velocity,
                     };
