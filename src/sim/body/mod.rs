@@ -27,7 +27,7 @@ pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
 use crate::species::Species;
-use elements::{Constraint, constraints, raw_values, wrap_angle};
+use elements::{Constraint, Side, constraints, raw_values, sides, wrap_angle};
 use glam::Vec2;
 use implicit::Solver;
 use network::{
@@ -78,6 +78,9 @@ pub struct Body {
     /// symmetric), each point past the axis's partner before it, whose mirror image it is
     /// (`None` before the axis and on it; empty for a planar body free to tilt).
     mirror_partners: Vec<Option<usize>>,
+    /// Each point's side of the axis, from `mirror_partners`: which elements the solve on
+    /// the half counts, and how often (`elements::weight`).
+    sides: Vec<Side>,
     drag_model: TentacleDrag,
     bell_solver: Solver,
     tentacle_solver: Solver,
@@ -175,6 +178,7 @@ impl Body {
             damping_time: species.mesoglea_damping_time(),
             tentacle_drag: vec![drag_model.at(0.0); scratch.len()],
             depth,
+            sides: sides(&mirror_partners),
             mirror_partners,
             drag_model,
             scratch,
@@ -209,6 +213,7 @@ impl Body {
         } else {
             Vec::new()
         };
+        self.sides = sides(&self.mirror_partners);
         [self.bell_solver, self.tentacle_solver] = Solver::pair(
             self.points.len(),
             &self.bell,
@@ -250,7 +255,7 @@ impl Body {
     #[cfg(test)]
     pub(crate) fn forces(&self, out: &mut [Vec2]) {
         out.iter_mut().for_each(|f| *f = Vec2::ZERO);
-        for c in constraints(self, &self.points) {
+        for c in constraints(self, &self.points, &[]) {
             c.add_force(out);
         }
     }
@@ -299,8 +304,10 @@ impl Body {
         bell.clear();
         tentacles.clear();
         // The strains before the step, in the same order, read only for the viscosity.
-        let mut before = raw_values(self, &self.points);
-        for mut c in constraints(self, predicted) {
+        // Of a body held symmetric, the elements past the axis are left out and their
+        // mirror images count twice (`elements::weight`): the solve is on the half.
+        let mut before = raw_values(self, &self.points, &self.sides);
+        for mut c in constraints(self, predicted, &self.sides) {
             if damping > 0.0
                 && let Some(before) = before.next()
             {

@@ -112,6 +112,73 @@ fn implicit_forces_match_explicit_ones_in(species: Species, symmetric: bool) {
     );
 }
 
+/// A body held symmetric is solved on its half: the elements wholly past the axis are
+/// left out and their mirror images count twice. Every element left out has an image
+/// counted twice (the weights add up to the number of elements), and the forces and the
+/// fringe's slip are those with every element counted once, to rounding: every shipped
+/// species and the paper's, in both geometries, tentacles and all.
+#[test]
+fn a_symmetric_body_solves_its_half_as_the_whole() {
+    use crate::species::SliceGeometry;
+    for species in [
+        Species::aurelia(),
+        Species::aequorea(),
+        Species::sarsia(),
+        Species::paper(),
+    ] {
+        for geometry in [SliceGeometry::Planar, SliceGeometry::Axisymmetric] {
+            let species = Species {
+                slice_geometry: geometry,
+                ..species.clone()
+            };
+            let name = format!("{} {geometry:?}", species.name);
+            let mut b = Body::new(&species, Vec2::new(0.2, 0.2), 0.004);
+            b.set_mirror_symmetric(true);
+            deformed(&mut b);
+            let axis = b.bell_points()[b.apex_index()].x;
+            b.symmetrise(axis);
+            let x = b.points.clone();
+            let every = constraints(&b, &x, &[]);
+            let (count, weights) = every.fold((0.0, 0.0), |(n, w), c| {
+                (n + 1.0, w + elements::weight(&b.sides, &c.idx[..c.count]))
+            });
+            let left_out = constraints(&b, &x, &[]).count() - constraints(&b, &x, &b.sides).count();
+            assert!(left_out > 0, "{name}: nothing past the axis left out");
+            assert_eq!(weights, count, "{name}");
+
+            let mut whole = b.clone();
+            whole.sides.clear();
+            let dt = 0.01;
+            let mass = vec![1025.0 * 0.004 * 0.004 / (dt * dt); x.len()];
+            let solve = |b: &mut Body| {
+                let (mut forces, mut slip) = (vec![Vec2::ZERO; x.len()], vec![Vec2::ZERO; x.len()]);
+                b.implicit_forces(&x, dt, &mass, &mut forces, &mut slip);
+                (forces, slip)
+            };
+            let (half, whole) = (solve(&mut b), solve(&mut whole));
+            let largest = |v: &[Vec2]| v.iter().fold(0.0f32, |m, f| m.max(f.length()));
+            let apart = |a: &[Vec2], b: &[Vec2]| {
+                a.iter()
+                    .zip(b)
+                    .fold(0.0f32, |m, (a, b)| m.max((*a - *b).length()))
+            };
+            assert!(
+                largest(&whole.0) > 0.0,
+                "{name}: the deformation loads the body"
+            );
+            let (forces, slip) = (apart(&half.0, &whole.0), apart(&half.1, &whole.1));
+            assert!(
+                forces <= 1e-4 * largest(&whole.0),
+                "{name}: forces {forces}"
+            );
+            assert!(
+                slip <= 1e-4 * largest(&whole.1).max(1e-12),
+                "{name}: slip {slip}"
+            );
+        }
+    }
+}
+
 #[test]
 fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
     // Swung unevenly, so free to tilt: every point solved.
