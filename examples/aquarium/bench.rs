@@ -3,6 +3,7 @@
 //! what a frame costs.
 
 use crate::school::School;
+use crate::trace::FrameTrace;
 use bevy::asset::{AssetPlugin, LoadState};
 use bevy::camera::primitives::Frustum;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
@@ -14,10 +15,26 @@ use bevy_jellyfish::plugin::{CycleCaches, JellyfishMeshes, JellyfishSlice, Surfa
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishPlugin, JellyfishSettings, Species,
 };
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 /// How long slices may take to start before the bench gives up, s.
 const READY_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// How the bench runs.
+pub struct Options {
+    /// Frames measured, after the warm-up.
+    pub frames: usize,
+    /// Frames per second of simulated time.
+    pub fps: f64,
+    /// Jellyfish spawned at once after the run, then a species edited ([`crate::burst`]);
+    /// none at 0.
+    pub burst: usize,
+    /// Each frame starts on its 1/fps tick ([`Pacer`]).
+    pub paced: bool,
+    /// Where to write every frame's figures ([`crate::trace`]).
+    pub trace: Option<PathBuf>,
+}
 
 /// Runs `frames` frames at `fps` after a warm-up and prints wall and CPU time per frame,
 /// the spread of frame times, and the mesh data handed to the renderer; then, with
@@ -25,13 +42,17 @@ const READY_TIMEOUT: Duration = Duration::from_secs(120);
 /// ([`crate::burst`]). Errors if the schools never start (a species that does not load).
 pub fn run(
     school: School,
-    frames: usize,
-    fps: f64,
-    burst: usize,
-    paced: bool,
+    options: &Options,
     settings: JellyfishSettings,
     pools: TaskPoolPlugin,
 ) -> Result<(), String> {
+    let Options {
+        frames,
+        fps,
+        burst,
+        paced,
+        ..
+    } = *options;
     let mut app = headless(fps, settings, pools, AssetPlugin::default());
     // (Held for the whole run, so the species are never dropped.)
     let _species = start_schools(&mut app, school)?;
@@ -51,12 +72,16 @@ pub fn run(
     let steps_before = steps(&mut app);
     let mut frame_ms = Vec::with_capacity(frames);
     let mut pacer = Pacer::new(fps, paced);
+    let mut trace = (options.trace.as_deref()).map(|path| FrameTrace::new(path, &app));
     let start = Instant::now();
     for _ in 0..frames {
         pacer.wait();
         let frame = Instant::now();
         app.update();
         frame_ms.push(frame.elapsed().as_secs_f64() * 1e3);
+        if let (Some(trace), Some(ms)) = (&mut trace, frame_ms.last()) {
+            trace.record(&app, *ms);
+        }
         let store = app.world().resource::<DiagnosticsStore>();
         simulation += value(store, &JellyfishDiagnostics::SIMULATION);
         meshing += value(store, &JellyfishDiagnostics::MESHING);
@@ -127,6 +152,9 @@ pub fn run(
     println!("mesh data: {:.2} MB changed per frame", mesh_data / n);
     println!("tank water: {:.2} ms of wall time per frame", water / n);
     println!("state hash: {:016x}", state_hash(&mut app));
+    if let Some(trace) = trace {
+        trace.finish()?;
+    }
     if burst > 0 {
         crate::burst::edit(&mut app, p99, fps, &mut pacer)?;
         crate::burst::spawn(&mut app, burst, fps, &mut pacer)?;

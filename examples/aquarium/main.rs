@@ -25,7 +25,9 @@
 //! with `--threads N` (N threads in the compute pool), the same for any N. With `--burst
 //! 1000` it then spawns a thousand more at once and edits a species, and prints those
 //! frames against the run's p99. With `--paced` each frame starts on its 1/fps tick, as
-//! in a game held to its display, instead of back to back.
+//! in a game held to its display, instead of back to back. With `--frame-trace FILE` it
+//! writes every frame's wall time, fixed ticks and the plugin's figures to a CSV, and
+//! sums the frames up by their fixed ticks (what a slow frame was made of).
 //!
 //! The soak, `-- --soak SECONDS --count 334`: the same for longer, with churn (jellyfish
 //! despawned and spawned, species edited, a species file rewritten valid and broken, the
@@ -45,6 +47,7 @@ mod snow;
 mod soak;
 mod stats;
 mod tank;
+mod trace;
 #[cfg(feature = "editor")]
 mod ui;
 mod water;
@@ -107,6 +110,10 @@ struct Args {
     /// does, instead of back to back (frame times are still the update's own)
     #[argh(switch)]
     paced: bool,
+    /// the benchmark: write every measured frame's wall time, fixed ticks and the plugin's
+    /// CPU figures to this CSV file, and sum the frames up by their fixed ticks
+    #[argh(option)]
+    frame_trace: Option<PathBuf>,
     /// benchmark frames per second (default 60)
     #[argh(option, default = "60.0", from_str_fn(fps))]
     fps: f64,
@@ -201,13 +208,16 @@ fn main() -> ExitCode {
         )
         .map_err(|e| format!("aquarium --soak: {e}"))
     } else if args.bench {
-        let frames = args.frames.unwrap_or(600);
+        let options = bench::Options {
+            frames: args.frames.unwrap_or(600),
+            fps: args.fps,
+            burst: args.burst,
+            paced: args.paced,
+            trace: args.frame_trace.clone(),
+        };
         bench::run(
             args.school(),
-            frames,
-            args.fps,
-            args.burst,
-            args.paced,
+            &options,
             args.headless(),
             task_pools(args.threads),
         )
