@@ -5,6 +5,7 @@
 //! implicit solve linearises.
 
 use super::Body;
+use super::half::{Weights, counted};
 use glam::Vec2;
 
 /// A Hookean spring between two points.
@@ -253,72 +254,23 @@ fn stiffen_beyond(c: &mut Constraint, knee: f32, factor: f32) {
     }
 }
 
-/// Where a point lies in a mirror-symmetric body solved on its half ([`Body::symmetrise`]
-/// pairs them), which decides how many times an element counts in the solve.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) enum Side {
-    /// On the axis (the apex), or any point of a body free to tilt.
-    #[default]
-    Alone,
-    /// Before the axis, with a partner past it that is its mirror image.
-    Twinned,
-    /// Past the axis: its partner's mirror image.
-    Mirrored,
-}
-
-/// Each point's [`Side`], from each point's partner past the axis (`partners[j] = Some(i)`:
-/// `j` is `i`'s mirror image); empty where there are none.
-pub(super) fn sides(partners: &[Option<usize>]) -> Vec<Side> {
-    if partners.is_empty() {
-        return Vec::new();
-    }
-    let mut sides = vec![Side::Alone; partners.len()];
-    for (j, partner) in partners.iter().enumerate() {
-        if let Some(i) = *partner {
-            sides[j] = Side::Mirrored;
-            sides[i] = Side::Twinned;
-        }
-    }
-    sides
-}
-
-/// How many times an element joining `idx` counts in a solve on the body's half: an
-/// element wholly past the axis is the mirror image of one wholly before it (the body is
-/// held symmetric), which then counts twice, its stiffness doubled (exactly, a power of
-/// two); every other element (on or across the axis, or of a body free to tilt) once.
-pub(super) fn weight(sides: &[Side], idx: &[usize]) -> f32 {
-    let all = |side: Side| idx.iter().all(|&i| sides.get(i) == Some(&side));
-    if all(Side::Mirrored) {
-        0.0
-    } else if all(Side::Twinned) {
-        2.0
-    } else {
-        1.0
-    }
-}
-
 /// Each counted element's strain or bend from rest alone (`Constraint::raw`, the same
-/// operations), in the order of [`constraints`] with the same `sides`: what the mesoglea's
-/// viscosity needs of the positions before a step, without the gradients.
+/// operations), in the order of [`constraints`] with the same `weights`: what the
+/// mesoglea's viscosity needs of the positions before a step, without the gradients.
 pub(super) fn raw_values<'a>(
     body: &'a Body,
     x: &'a [Vec2],
-    sides: &'a [Side],
+    weights: &'a Weights,
 ) -> impl Iterator<Item = f32> + 'a {
-    let counted = move |idx: &[usize]| weight(sides, idx) > 0.0;
     let stretch = |a: usize, b: usize, rest: f32| (x[b] - x[a]).length() - rest;
-    let springs = (body.springs.iter())
-        .filter(move |s| counted(&[s.a, s.b]))
-        .map(move |s| stretch(s.a, s.b, s.rest));
-    let muscles = (body.muscles.iter())
-        .filter(move |m| counted(&[m.a, m.b]))
-        .map(move |m| stretch(m.a, m.b, m.rest));
-    let hinges = (body.hinges.iter())
-        .filter(move |h| counted(&[h.a, h.b, h.c]))
-        .map(move |h| hinge_bend(x[h.a] - x[h.b], x[h.c] - x[h.b], h.rest));
-    let hoop_bends = (body.hoop_bends.iter())
-        .filter(move |h| counted(&[h.a, h.b]))
-        .map(move |h| slope_sine(x[h.b] - x[h.a]) - h.rest);
+    let springs =
+        counted(&body.springs, &weights.springs).map(move |(s, _)| stretch(s.a, s.b, s.rest));
+    let muscles =
+        counted(&body.muscles, &weights.muscles).map(move |(m, _)| stretch(m.a, m.b, m.rest));
+    let hinges = counted(&body.hinges, &weights.hinges)
+        .map(move |(h, _)| hinge_bend(x[h.a] - x[h.b], x[h.c] - x[h.b], h.rest));
+    let hoop_bends = counted(&body.hoop_bends, &weights.hoop_bends)
+        .map(move |(h, _)| slope_sine(x[h.b] - x[h.a]) - h.rest);
     springs.chain(muscles).chain(hinges).chain(hoop_bends)
 }
 
@@ -327,17 +279,16 @@ fn hinge_bend(e1: Vec2, e2: Vec2, rest: f32) -> f32 {
     wrap_angle(signed_angle(e1, e2) - rest)
 }
 
-/// Every element as a constraint at the positions `x`, springs, muscles, hinges and hoop
-/// bends in that order; with `sides` ([`sides`]), only those a solve on the half counts,
-/// each with its stiffness times its [`weight`] (empty: all of them, once).
+/// Every counted element as a constraint at the positions `x`, springs, muscles, hinges
+/// and hoop bends in that order, each with its stiffness times its weight (`weights`;
+/// [`Weights::default`] counts every element once).
 pub(super) fn constraints<'a>(
     body: &'a Body,
     x: &'a [Vec2],
-    sides: &'a [Side],
+    weights: &'a Weights,
 ) -> impl Iterator<Item = Constraint> + 'a {
-    let counted = move |idx: &[usize]| weight(sides, idx) > 0.0;
-    let weighed = move |mut c: Constraint| {
-        c.stiffness *= weight(sides, &c.idx[..c.count]);
+    let weighed = |mut c: Constraint, weight: f32| {
+        c.stiffness *= weight;
         c
     };
     let stretch = |a: usize, b: usize, rest: f32, stiffness: f32| {
@@ -354,27 +305,21 @@ pub(super) fn constraints<'a>(
             change: 0.0,
         }
     };
-    let springs = body.springs.iter().filter(move |s| counted(&[s.a, s.b]));
-    let springs = springs.map(move |s| {
+    let springs = counted(&body.springs, &weights.springs).map(move |(s, w)| {
         let mut c = stretch(s.a, s.b, s.rest, s.stiffness);
         if let Some(limit) = s.strain_limit {
             stiffen_beyond(&mut c, limit * s.rest, STIFFENING);
         }
-        c
+        weighed(c, w)
     });
     // A planar muscle spring pulls and pushes (paper 3.3); an r–z force generator only
     // pulls, as strongly as it is activated (`Drive`).
-    let muscles = body.muscles.iter().filter(move |m| counted(&[m.a, m.b]));
-    let muscles = muscles.map(move |m| {
+    let muscles = counted(&body.muscles, &weights.muscles).map(move |(m, w)| {
         let mut c = stretch(m.a, m.b, m.rest, m.stiffness);
         c.stiffness = m.stiffness_at(c.value);
-        c
+        weighed(c, w)
     });
-    let hinges = body
-        .hinges
-        .iter()
-        .filter(move |h| counted(&[h.a, h.b, h.c]));
-    let hinges = hinges.map(move |h| {
+    let hinges = counted(&body.hinges, &weights.hinges).map(move |(h, w)| {
         let e1 = x[h.a] - x[h.b];
         let e2 = x[h.c] - x[h.b];
         let l1 = e1.length_squared().max(1e-18);
@@ -392,16 +337,15 @@ pub(super) fn constraints<'a>(
             change: 0.0,
         };
         stiffen_beyond(&mut c, h.bend_limit, HINGE_STIFFENING);
-        c
+        weighed(c, w)
     });
-    let hoop_bends = body.hoop_bends.iter().filter(move |h| counted(&[h.a, h.b]));
-    let hoop_bends = hoop_bends.map(move |h| {
+    let hoop_bends = counted(&body.hoop_bends, &weights.hoop_bends).map(move |(h, w)| {
         let d = x[h.b] - x[h.a];
         let len = d.length().max(1e-12);
         // ∂(d.y/|d|)/∂d = d.x·d⊥/|d|³.
         let grad = d.perp() * (d.x / (len * len * len));
         let change = slope_sine(d) - h.rest;
-        Constraint {
+        let c = Constraint {
             idx: [h.a, h.b, h.b],
             grad: [-grad, grad, Vec2::ZERO],
             count: 2,
@@ -409,8 +353,8 @@ pub(super) fn constraints<'a>(
             value: change,
             raw: change,
             change: 0.0,
-        }
+        };
+        weighed(c, w)
     });
-    let every = springs.chain(muscles).chain(hinges).chain(hoop_bends);
-    every.map(weighed)
+    springs.chain(muscles).chain(hinges).chain(hoop_bends)
 }

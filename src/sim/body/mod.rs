@@ -12,6 +12,7 @@
 
 mod depth;
 mod elements;
+mod half;
 mod implicit;
 mod kept;
 mod network;
@@ -27,8 +28,9 @@ pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
 use crate::species::Species;
-use elements::{Constraint, Side, constraints, raw_values, sides, wrap_angle};
+use elements::{Constraint, constraints, raw_values, wrap_angle};
 use glam::Vec2;
+use half::Weights;
 use implicit::Solver;
 use network::{
     Tentacles, circumferential_muscles, hang_tentacles, hoop_bending, mesoglea_hinges, ring_hoops,
@@ -78,9 +80,9 @@ pub struct Body {
     /// symmetric), each point past the axis's partner before it, whose mirror image it is
     /// (`None` before the axis and on it; empty for a planar body free to tilt).
     mirror_partners: Vec<Option<usize>>,
-    /// Each point's side of the axis, from `mirror_partners`: which elements the solve on
-    /// the half counts, and how often (`elements::weight`).
-    sides: Vec<Side>,
+    /// How often the solve on the half counts each element (`half`), from
+    /// `mirror_partners`.
+    weights: Weights,
     drag_model: TentacleDrag,
     bell_solver: Solver,
     tentacle_solver: Solver,
@@ -167,7 +169,7 @@ impl Body {
             Solver::pair(points.len(), &(0..bell_len), &tentacles, &mirror_partners);
         let scratch = vec![Vec2::ZERO; points.len()];
         let drag_model = TentacleDrag::new(species, seg_len, depth);
-        Self {
+        let mut body = Self {
             points,
             bell: 0..bell_len,
             tentacles,
@@ -178,14 +180,16 @@ impl Body {
             damping_time: species.mesoglea_damping_time(),
             tentacle_drag: vec![drag_model.at(0.0); scratch.len()],
             depth,
-            sides: sides(&mirror_partners),
+            weights: Weights::default(),
             mirror_partners,
             drag_model,
             scratch,
             bell_solver,
             tentacle_solver,
             split: Split::default(),
-        }
+        };
+        body.weights = Weights::of(&body);
+        body
     }
 
     /// Whether `other` has the same points, laid out alike (its positions fit this body).
@@ -213,7 +217,7 @@ impl Body {
         } else {
             Vec::new()
         };
-        self.sides = sides(&self.mirror_partners);
+        self.weights = Weights::of(self);
         [self.bell_solver, self.tentacle_solver] = Solver::pair(
             self.points.len(),
             &self.bell,
@@ -255,7 +259,7 @@ impl Body {
     #[cfg(test)]
     pub(crate) fn forces(&self, out: &mut [Vec2]) {
         out.iter_mut().for_each(|f| *f = Vec2::ZERO);
-        for c in constraints(self, &self.points, &[]) {
+        for c in constraints(self, &self.points, &Weights::default()) {
             c.add_force(out);
         }
     }
@@ -305,9 +309,9 @@ impl Body {
         tentacles.clear();
         // The strains before the step, in the same order, read only for the viscosity.
         // Of a body held symmetric, the elements past the axis are left out and their
-        // mirror images count twice (`elements::weight`): the solve is on the half.
-        let mut before = raw_values(self, &self.points, &self.sides);
-        for mut c in constraints(self, predicted, &self.sides) {
+        // mirror images count twice (`half`): the solve is on the half.
+        let mut before = raw_values(self, &self.points, &self.weights);
+        for mut c in constraints(self, predicted, &self.weights) {
             if damping > 0.0
                 && let Some(before) = before.next()
             {

@@ -138,16 +138,27 @@ fn a_symmetric_body_solves_its_half_as_the_whole() {
             let axis = b.bell_points()[b.apex_index()].x;
             b.symmetrise(axis);
             let x = b.points.clone();
-            let every = constraints(&b, &x, &[]);
-            let (count, weights) = every.fold((0.0, 0.0), |(n, w), c| {
-                (n + 1.0, w + elements::weight(&b.sides, &c.idx[..c.count]))
-            });
-            let left_out = constraints(&b, &x, &[]).count() - constraints(&b, &x, &b.sides).count();
+            let weights: Vec<f32> = b.weights.all().collect();
+            let elements = b.springs.len() + b.muscles.len() + b.hinges.len();
+            assert_eq!(weights.len(), elements + b.hoop_bends.len(), "{name}");
+            let (left_out, doubled) = (
+                weights.iter().filter(|w| **w == 0.0).count(),
+                weights.iter().filter(|w| **w == 2.0).count(),
+            );
             assert!(left_out > 0, "{name}: nothing past the axis left out");
-            assert_eq!(weights, count, "{name}");
+            assert_eq!(
+                left_out, doubled,
+                "{name}: each left out has an image counted twice"
+            );
+            assert!(
+                weights.iter().all(|w| [0.0, 1.0, 2.0].contains(w)),
+                "{name}"
+            );
+            let counted = constraints(&b, &x, &b.weights).count();
+            assert_eq!(counted, weights.len() - left_out, "{name}");
 
             let mut whole = b.clone();
-            whole.sides.clear();
+            whole.weights = half::Weights::default();
             let dt = 0.01;
             let mass = vec![1025.0 * 0.004 * 0.004 / (dt * dt); x.len()];
             let solve = |b: &mut Body| {
