@@ -178,6 +178,9 @@ fn sweep<const MODE: u8>(
     // faces (`window`): the same bits as below.
     #[cfg(target_arch = "x86_64")]
     let avx = window::avx::available();
+    // The clamped rows around a row at the field's first or last rows (`trace_windowed`).
+    #[cfg(target_arch = "x86_64")]
+    let mut edge = Vec::new();
     // u faces, (n + 1) × n: each one's own u, and v averaged from the four faces around it.
     for j in 0..n {
         let row = j * (n + 1);
@@ -205,7 +208,8 @@ fn sweep<const MODE: u8>(
             };
             let dims = [n + 1, n];
             // SAFETY: this processor has AVX (asked above).
-            if unsafe { trace_windowed::<MODE>(src[0], dims, j, &faces, carried, s, foot, out) } {
+            let row = (j, &faces, &mut edge);
+            if unsafe { trace_windowed::<MODE>(src[0], dims, row, carried, s, foot, out) } {
                 continue;
             }
         }
@@ -242,7 +246,8 @@ fn sweep<const MODE: u8>(
             };
             let (dims, faces) = ([n, n + 1], 0..traced);
             // SAFETY: this processor has AVX (asked above).
-            if unsafe { trace_windowed::<MODE>(src[1], dims, j, &faces, carried, s, foot, out) } {
+            let row = (j, &faces, &mut edge);
+            if unsafe { trace_windowed::<MODE>(src[1], dims, row, carried, s, foot, out) } {
                 continue;
             }
         }
@@ -254,7 +259,8 @@ fn sweep<const MODE: u8>(
 /// Plain bilinear or bicubic with AVX: of the faces `faces` of row `j`, those far enough
 /// inside the row for the window go to it eight at a time (`window::avx::trace_row`),
 /// the few at its ends one at a time (`foot`); `false`, and nothing done, where fewer
-/// than eight are inside.
+/// than eight are inside. A row whose window reaches past the field's first or last row
+/// hands the window its rows clamped to the field, copied into `edge`.
 ///
 /// # Safety
 /// The processor must have AVX (`window::avx::available`).
@@ -263,8 +269,7 @@ fn sweep<const MODE: u8>(
 unsafe fn trace_windowed<const MODE: u8>(
     field: &[f32],
     [nx, ny]: [usize; 2],
-    j: usize,
-    faces: &std::ops::Range<usize>,
+    (j, faces, edge): (usize, &std::ops::Range<usize>, &mut Vec<f32>),
     carried: Carried,
     s: f32,
     foot: impl Fn(usize) -> (f32, f32),
@@ -283,11 +288,20 @@ unsafe fn trace_windowed<const MODE: u8>(
             _ => linear_sample(field, nx, ny, x, y),
         };
     }
+    let edge = (j < reach || j + reach >= ny).then(|| {
+        edge.clear();
+        for k in 0..2 * reach + 1 {
+            let r = (j + k).saturating_sub(reach).min(ny - 1);
+            edge.extend_from_slice(&field[r * nx..][..nx]);
+        }
+        &edge[..]
+    });
+    let dims = [nx, ny];
     // SAFETY: the caller vouches for AVX.
     unsafe {
         match MODE {
-            CUBIC => window::avx::trace_row::<true>(field, [nx, ny], j, inside, carried, s, out),
-            _ => window::avx::trace_row::<false>(field, [nx, ny], j, inside, carried, s, out),
+            CUBIC => window::avx::trace_row::<true>(field, dims, j, inside, carried, s, edge, out),
+            _ => window::avx::trace_row::<false>(field, dims, j, inside, carried, s, edge, out),
         }
     };
     true

@@ -40,8 +40,13 @@ pub(super) mod avx {
     /// samplers' clamps do not reach; four at a time by the general sampler where not.
     /// The last eight end the row, overlapping the eight before where the count is not a
     /// multiple of eight (those faces get the same values again). At least eight faces.
+    /// A row whose window reaches past the field's first or last row takes its window
+    /// from `edge`, the rows `j − reach` to `j + reach` each clamped to the field (what the
+    /// samplers' clamps read there), for the eights whose feet all lie within the field's
+    /// rows (`0 ≤ y < ny − 1`, where the samplers clamp nothing themselves).
     /// Returns how many eights the window took.
     #[target_feature(enable = "avx")]
+    #[allow(clippy::too_many_arguments)]
     pub(in crate::sim::fluid) fn trace_row<const CUBIC: bool>(
         field: &[f32],
         [nx, ny]: [usize; 2],
@@ -49,15 +54,27 @@ pub(super) mod avx {
         faces: std::ops::Range<usize>,
         carried: Carried,
         s: f32,
+        edge: Option<&[f32]>,
         out: &mut [f32],
     ) -> usize {
         use crate::sim::fluid::sampling::{cubic_sample4, linear_sample4, within};
         // Rows and columns the window reaches either side of a face: a foot's cell is its
         // face's or the one before, and bicubic reads one more on each side of it.
         let reach = if CUBIC { 2 } else { 1 };
-        // The window's rows (`j − reach` to `j + reach`) if the samplers' clamps to the
-        // field do not reach them (`locate` keeps a cell below the last but one).
+        // The window's rows (`j − reach` to `j + reach`): the field's own if the samplers'
+        // clamps to the field do not reach them (`locate` keeps a cell below the last but
+        // one), else `edge`'s, for feet within the field's rows. `rows` holds them from
+        // its row `first` on.
         let inside_rows = j >= reach && j + reach < ny;
+        let (rows, first, inside_rows, within_rows) = match edge {
+            Some(edge) if !inside_rows => {
+                assert!(edge.len() >= (2 * reach + 1) * nx);
+                (edge, 0, true, true)
+            }
+            _ => (field, j.saturating_sub(reach), inside_rows, false),
+        };
+        // Where a foot may lie on the field's rows for `edge`'s window.
+        let (lowest, below_last) = (_mm256_setzero_ps(), _mm256_set1_ps((ny - 1) as f32));
         // Every load below lies within these bounds, checked once a row rather than at
         // each of a window's forty loads: the carried rows hold the faces and the four
         // around each (a u face's v columns `i − 1` and `i`, a v face's u columns `i` and
@@ -113,7 +130,7 @@ pub(super) mod avx {
             };
             let (before_x, after_x) = (_mm256_sub_ps(home_x, one), _mm256_add_ps(home_x, one));
             // Within reach on both axes (NaN compares false).
-            let near = _mm256_and_ps(
+            let mut near = _mm256_and_ps(
                 _mm256_and_ps(
                     _mm256_cmp_ps::<_CMP_GE_OQ>(x, before_x),
                     _mm256_cmp_ps::<_CMP_LT_OQ>(x, after_x),
@@ -123,6 +140,13 @@ pub(super) mod avx {
                     _mm256_cmp_ps::<_CMP_LT_OQ>(y, after_y),
                 ),
             );
+            if within_rows {
+                let on_rows = _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GE_OQ>(y, lowest),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(y, below_last),
+                );
+                near = _mm256_and_ps(near, on_rows);
+            }
             let out = &mut out[at..][..8];
             // The window's columns, `at − reach` to `at + 7 + reach`, inside the clamps too.
             let inside = inside_rows && at >= reach && at + 8 + reach <= nx;
@@ -138,11 +162,11 @@ pub(super) mod avx {
                 // (Loops, not closures: those were left as calls.)
                 let mut columns = [[_mm256_setzero_ps(); 4]; 5];
                 for (k, row) in columns.iter_mut().enumerate().take(2 * reach + 1) {
-                    // `inside`: these rows and columns lie within the field.
-                    let w = (j + k - reach) * nx + at - reach;
+                    // `inside`: these rows and columns lie within `rows`.
+                    let w = (first + k) * nx + at - reach;
                     let mut shifted = [_mm256_setzero_ps(); 5];
                     for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
-                        *v = load!(field, w + o);
+                        *v = load!(rows, w + o);
                     }
                     for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
                         *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
@@ -267,7 +291,7 @@ pub(super) mod avx {
             let odd = [
                 -1.0, -below_one, -0.5, -0.0, 0.0, 0.25, below_one, 1.0, -1.01,
             ];
-            let (mut taken, mut declined) = (0, 0);
+            let (mut taken, mut declined, mut ends_taken) = (0, 0, 0);
             for round in 0..1200 {
                 let u_faces = round % 2 == 0;
                 // The field's columns and rows, and the carried rows' lengths.
@@ -316,11 +340,21 @@ pub(super) mod avx {
                         u: [&below, &above],
                     }
                 };
+                // The rows around `j` clamped to the field, as `advection` hands a row at
+                // the field's ends: every other round, those rows take their window from it.
+                let clamped: Vec<f32> = (0..2 * reach + 1)
+                    .flat_map(|k| {
+                        let r = (j + k).saturating_sub(reach).min(ny - 1);
+                        field[r * nx..][..nx].to_vec()
+                    })
+                    .collect();
+                let at_an_end = j < reach || j + reach >= ny;
+                let edge = (round % 4 < 2).then_some(&clamped[..]);
                 let mut out = vec![f32::NAN; nx];
                 let dims = [nx, ny];
                 // SAFETY: the caller asked `available()`.
                 let took = unsafe {
-                    trace_row::<CUBIC>(&field, dims, j, first..end, carried, s, &mut out)
+                    trace_row::<CUBIC>(&field, dims, j, first..end, carried, s, edge, &mut out)
                 };
                 for (f, sampled) in out.iter().enumerate().take(end).skip(first) {
                     let (x, y) = foot(f);
@@ -331,20 +365,31 @@ pub(super) mod avx {
                     };
                     assert_eq!(sampled.to_bits(), one.to_bits(), "face {f} of row {j}");
                 }
-                // The eights it walks, and which of them the window can take.
+                // The eights it walks, and which of them the window can take: away from
+                // the field's first and last rows, or at them from the clamped rows where
+                // every foot lies within the field's rows.
                 let near = |t: f32, home: usize| t >= home as f32 - 1.0 && t < home as f32 + 1.0;
+                let on_rows = |y: f32| y >= 0.0 && y < (ny - 1) as f32;
                 let mut expected = 0;
                 let mut i = first;
                 loop {
                     let at = i.min(end - 8);
-                    let inside =
-                        at >= reach && at + 8 + reach <= nx && j >= reach && j + reach < ny;
-                    let all_near = (at..at + 8).all(|f| {
-                        let (x, y) = foot(f);
-                        near(x, f) && near(y, j)
-                    });
-                    if inside && all_near {
+                    let columns = at >= reach && at + 8 + reach <= nx;
+                    let all = |ok: &dyn Fn(f32, f32, usize) -> bool| {
+                        (at..at + 8).all(|f| {
+                            let (x, y) = foot(f);
+                            ok(x, y, f)
+                        })
+                    };
+                    let all_near = all(&|x, y, f| near(x, f) && near(y, j));
+                    let taken_here = match (at_an_end, edge) {
+                        (false, _) => columns && all_near,
+                        (true, None) => false,
+                        (true, Some(_)) => columns && all_near && all(&|_, y, _| on_rows(y)),
+                    };
+                    if taken_here {
                         expected += 1;
+                        ends_taken += usize::from(at_an_end);
                     } else {
                         declined += 1;
                     }
@@ -357,8 +402,8 @@ pub(super) mod avx {
                 taken += took;
             }
             assert!(
-                taken > 250 && declined > 250,
-                "{taken} taken, {declined} declined"
+                taken > 250 && declined > 250 && ends_taken > 0,
+                "{taken} taken ({ends_taken} at the field's ends), {declined} declined"
             );
         }
 
