@@ -259,8 +259,8 @@ fn sweep<const MODE: u8>(
 /// Plain bilinear or bicubic with AVX: of the faces `faces` of row `j`, those far enough
 /// inside the row for the window go to it eight at a time (`window::avx::trace_row`),
 /// the few at its ends one at a time (`foot`); `false`, and nothing done, where fewer
-/// than eight are inside. A row whose window reaches past the field's first or last row
-/// hands the window its rows clamped to the field, copied into `edge`.
+/// than eight are inside. A bicubic row whose window reaches past the field's first or
+/// last row hands the window its rows clamped to the field, copied into `edge`.
 ///
 /// # Safety
 /// The processor must have AVX (`window::avx::available`).
@@ -288,7 +288,8 @@ unsafe fn trace_windowed<const MODE: u8>(
             _ => linear_sample(field, nx, ny, x, y),
         };
     }
-    let edge = (j < reach || j + reach >= ny).then(|| {
+    // (Bicubic only: bilinear's four-wide fallback costs less than the copy.)
+    let edge = (MODE == CUBIC && (j < reach || j + reach >= ny)).then(|| {
         edge.clear();
         for k in 0..2 * reach + 1 {
             let r = (j + k).saturating_sub(reach).min(ny - 1);
