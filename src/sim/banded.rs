@@ -5,6 +5,17 @@
 //! every coupling lands within a few rows of the diagonal, so an exact banded solve costs
 //! O(n·b²) and never stalls the way conjugate gradients does on stiff hinges.
 
+/// Entries of `k·g gᵀ` over three points of two unknowns each, lower triangle: three
+/// points' 2×2 blocks of three, and three pairs' blocks of four.
+const STAMP_ENTRIES: usize = 21;
+
+/// Where one coupling's entries lie in a [`BandedSpd`]'s storage ([`BandedSpd::stamp`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stamp {
+    points: usize,
+    places: [usize; STAMP_ENTRIES],
+}
+
 /// A symmetric positive-definite banded matrix, factored in place by Cholesky.
 #[derive(Clone)]
 pub(crate) struct BandedSpd {
@@ -46,41 +57,119 @@ impl BandedSpd {
         self.lower[r * (self.band + 1) + (r - c)] += value;
     }
 
-    /// Adds `k·g gᵀ` for a gradient `g` over a few points of two unknowns each,
-    /// `(first unknown, [x, y])` with distinct points, each entry `k·(gₐ·g_b)` (the product
-    /// in `f32`, as the gradients are) added once.
-    pub(crate) fn add_outer(&mut self, k: f64, g: &[(usize, [f32; 2])]) {
+    /// Where `k·g gᵀ` lands in the lower band for a coupling of a few points whose first
+    /// unknowns are `firsts` (two unknowns each, distinct points): worked out once for a
+    /// coupling whose points never change, so adding it is a load per entry.
+    pub(crate) fn stamp(&self, firsts: &[usize]) -> Stamp {
+        assert!(firsts.len() <= 3, "a stamp couples at most three points");
         let w = self.band + 1;
-        let lower = &mut self.lower[..];
-        let mut add = |r: usize, c: usize, value: f64| {
-            debug_assert!(r >= c && r - c < w, "entry outside the band");
-            lower[r * w + (r - c)] += value;
+        let mut stamp = Stamp {
+            points: firsts.len(),
+            places: [0; STAMP_ENTRIES],
         };
-        for (p, &(op, gp)) in g.iter().enumerate() {
+        let mut entry = 0;
+        let mut place = |r: usize, c: usize| {
+            let (r, c) = if r >= c { (r, c) } else { (c, r) };
+            assert!(r - c <= self.band && r < self.n, "entry outside the band");
+            stamp.places[entry] = r * w + (r - c);
+            entry += 1;
+        };
+        for (p, &op) in firsts.iter().enumerate() {
             // The point's own 2×2 block is symmetric: its lower triangle.
-            add(op, op, k * (gp[0] * gp[0]) as f64);
-            add(op + 1, op, k * (gp[1] * gp[0]) as f64);
-            add(op + 1, op + 1, k * (gp[1] * gp[1]) as f64);
-            for &(oq, gq) in &g[..p] {
-                for (a, ga) in gp.iter().enumerate() {
-                    for (b, gb) in gq.iter().enumerate() {
-                        let (r, c) = (op + a, oq + b);
-                        let value = k * (ga * gb) as f64;
-                        if r >= c {
-                            add(r, c, value)
-                        } else {
-                            add(c, r, value)
-                        }
+            place(op, op);
+            place(op + 1, op);
+            place(op + 1, op + 1);
+            for &oq in &firsts[..p] {
+                for a in 0..2 {
+                    for b in 0..2 {
+                        place(op + a, oq + b);
                     }
                 }
             }
+        }
+        stamp
+    }
+
+    /// Adds `k·g gᵀ` for a gradient over the points `stamp` was made for, `[x, y]` each,
+    /// each entry `k·(gₐ·g_b)` (the product in `f32`, as the gradients are) added once.
+    pub(crate) fn add_stamped(&mut self, k: f64, stamp: &Stamp, g: &[[f32; 2]]) {
+        debug_assert_eq!(g.len(), stamp.points, "a gradient for the stamp's points");
+        // Each count of points on its own, unrolled: most of the body's couplings are one
+        // or two points, their entries a handful of loads and adds.
+        match *g {
+            [a] => self.add_entries::<3>(k, stamp, [a[0] * a[0], a[1] * a[0], a[1] * a[1]]),
+            [a, b] => self.add_entries::<10>(
+                k,
+                stamp,
+                [
+                    a[0] * a[0],
+                    a[1] * a[0],
+                    a[1] * a[1],
+                    b[0] * b[0],
+                    b[1] * b[0],
+                    b[1] * b[1],
+                    b[0] * a[0],
+                    b[0] * a[1],
+                    b[1] * a[0],
+                    b[1] * a[1],
+                ],
+            ),
+            [a, b, c] => self.add_entries::<21>(
+                k,
+                stamp,
+                [
+                    a[0] * a[0],
+                    a[1] * a[0],
+                    a[1] * a[1],
+                    b[0] * b[0],
+                    b[1] * b[0],
+                    b[1] * b[1],
+                    b[0] * a[0],
+                    b[0] * a[1],
+                    b[1] * a[0],
+                    b[1] * a[1],
+                    c[0] * c[0],
+                    c[1] * c[0],
+                    c[1] * c[1],
+                    c[0] * a[0],
+                    c[0] * a[1],
+                    c[1] * a[0],
+                    c[1] * a[1],
+                    c[0] * b[0],
+                    c[0] * b[1],
+                    c[1] * b[0],
+                    c[1] * b[1],
+                ],
+            ),
+            _ => {}
+        }
+    }
+
+    /// Adds `k` times each of `values` at the stamp's first `E` places.
+    #[inline(always)]
+    fn add_entries<const E: usize>(&mut self, k: f64, stamp: &Stamp, values: [f32; E]) {
+        let places: &[usize; E] = stamp.places[..E].try_into().expect("E entries");
+        for (&at, value) in places.iter().zip(values) {
+            self.lower[at] += k * value as f64;
         }
     }
 
     /// Factorises in place (Cholesky, `A = L·Lᵀ`) and solves `A x = rhs`, overwriting
     /// `rhs` with `x`. Returns false if the matrix was not positive definite.
     pub(crate) fn factor_and_solve(&mut self, rhs: &mut [f64]) -> bool {
-        let (n, b) = (self.n, self.band);
+        // The body's chains, solved on their half, couple each point to the next two
+        // (hinges): five diagonals, which the compiler unrolls when it knows them.
+        match self.band {
+            5 => self.factor_and_solve_within(5, rhs),
+            band => self.factor_and_solve_within(band, rhs),
+        }
+    }
+
+    /// [`Self::factor_and_solve`] for a half-bandwidth `b`, the matrix's own.
+    #[inline(always)]
+    fn factor_and_solve_within(&mut self, b: usize, rhs: &mut [f64]) -> bool {
+        debug_assert_eq!(b, self.band);
+        let n = self.n;
         let w = b + 1;
         for i in 0..n {
             // Row i's entries run from column `first`; every column j of it shares that
@@ -166,5 +255,50 @@ mod tests {
         m.clear_to_diagonal(1.0);
         m.add(1, 0, 2.0);
         assert!(!m.factor_and_solve(&mut [1.0, 1.0, 1.0]));
+    }
+
+    /// A stamped outer product is `k·g gᵀ` entry by entry, wherever its points lie in the
+    /// band and in whatever order they come, and adds on top of what is there.
+    #[test]
+    fn a_stamp_adds_the_outer_product() {
+        let (n, band) = (10, 5);
+        let entry = |m: &BandedSpd, r: usize, c: usize| {
+            let (r, c) = if r >= c { (r, c) } else { (c, r) };
+            if r - c > band {
+                0.0
+            } else {
+                m.lower[r * (band + 1) + (r - c)]
+            }
+        };
+        for firsts in [vec![4], vec![6, 4], vec![2, 0, 4], vec![8, 4, 6]] {
+            let g: Vec<[f32; 2]> = (0..firsts.len())
+                .map(|p| [0.3 + p as f32, -1.7 + 0.5 * p as f32])
+                .collect();
+            let mut m = BandedSpd::new(n, band);
+            m.clear_to_diagonal(2.0);
+            let stamp = m.stamp(&firsts);
+            m.add_stamped(1.5, &stamp, &g);
+            m.add_stamped(1.5, &stamp, &g);
+            let mut dense = vec![vec![0.0f64; n]; n];
+            for (p, &op) in firsts.iter().enumerate() {
+                for (q, &oq) in firsts.iter().enumerate() {
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            dense[op + a][oq + b] += 3.0 * (g[p][a] * g[q][b]) as f64;
+                        }
+                    }
+                }
+            }
+            for (r, row) in dense.iter().enumerate() {
+                for (c, &want) in row.iter().enumerate() {
+                    let want = want + if r == c { 2.0 } else { 0.0 };
+                    let got = entry(&m, r, c);
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "{firsts:?} ({r}, {c}): {got} vs {want}"
+                    );
+                }
+            }
+        }
     }
 }

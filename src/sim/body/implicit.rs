@@ -2,7 +2,7 @@
 //! positions, solved exactly with a banded Cholesky factorisation.
 
 use super::elements::Constraint;
-use crate::sim::banded::BandedSpd;
+use crate::sim::banded::{BandedSpd, Stamp};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -23,6 +23,8 @@ pub(super) struct Solver {
     /// The points that enter as their partner's mirror image, ascending.
     mirrored: Vec<usize>,
     matrix: BandedSpd,
+    /// How each element enters the matrix, in the order [`Solver::prepare`] saw them.
+    assembly: Vec<Assembly>,
     /// The right-hand side, then the solution.
     pub(crate) rhs: Vec<f64>,
     forces: Vec<Vec2>,
@@ -34,6 +36,19 @@ struct Place {
     at: usize,
     /// The point is its partner's mirror image: its radial (x) part reversed.
     mirrored: bool,
+}
+
+/// How one element enters the solve, worked out once: a body's elements and their order
+/// never change from step to step, so neither do the unknowns each one couples.
+#[derive(Clone, Copy)]
+struct Assembly {
+    /// For each of its points, the slot among the unknowns it couples that the point's
+    /// gradient adds into and whether the point enters mirrored; `None` where it is held.
+    points: [Option<(usize, bool)>; 3],
+    /// How many distinct points it couples (a point and its mirror image are one).
+    slots: usize,
+    /// Where its stiffness lands in the band.
+    stamp: Stamp,
 }
 
 impl Place {
@@ -76,6 +91,7 @@ impl Solver {
             sequence,
             mirrored,
             matrix: BandedSpd::new(0, 0),
+            assembly: Vec::new(),
             rhs: Vec::new(),
             forces: vec![Vec2::ZERO; body_len],
         }
@@ -130,7 +146,8 @@ impl Solver {
         out
     }
 
-    /// Sizes the band for the couplings the body has.
+    /// Sizes the band for the couplings the body has, and works out where each of them
+    /// enters it; `cons` must come in the same order at every solve.
     pub(crate) fn prepare(&mut self, cons: &[Constraint]) {
         let band = cons
             .iter()
@@ -146,6 +163,35 @@ impl Solver {
         let dofs = 2 * self.sequence.len();
         self.matrix = BandedSpd::new(dofs, 2 * band + 1);
         self.rhs = vec![0.0; dofs];
+        self.assembly = cons.iter().map(|c| self.assembly_of(c)).collect();
+    }
+
+    /// Which unknowns `c` couples: a point and its mirror image are one, so their
+    /// gradients add into one slot.
+    fn assembly_of(&self, c: &Constraint) -> Assembly {
+        let mut points = [None; 3];
+        let mut firsts = [0; 3];
+        let mut slots = 0;
+        for (p, &i) in c.idx[..c.count].iter().enumerate() {
+            let Some(place) = self.order[i] else {
+                continue;
+            };
+            let first = 2 * place.at;
+            let slot = match firsts[..slots].iter().position(|&f| f == first) {
+                Some(slot) => slot,
+                None => {
+                    firsts[slots] = first;
+                    slots += 1;
+                    slots - 1
+                }
+            };
+            points[p] = Some((slot, place.mirrored));
+        }
+        Assembly {
+            points,
+            slots,
+            stamp: self.matrix.stamp(&firsts[..slots]),
+        }
     }
 
     /// Solves for the forces at the predicted positions, `damping = τ/dt` adding the
@@ -159,22 +205,6 @@ impl Solver {
         damping: f32,
         out: &mut [Vec2],
     ) {
-        // Right-hand side: the explicit forces at the predicted positions.
-        self.forces.iter_mut().for_each(|f| *f = Vec2::ZERO);
-        for c in cons {
-            c.add_damped_force(&mut self.forces, damping);
-        }
-        for (o, &i) in self.sequence.iter().enumerate() {
-            let f = self.forces[i];
-            self.rhs[2 * o] = f.x as f64;
-            self.rhs[2 * o + 1] = f.y as f64;
-        }
-        for &j in &self.mirrored {
-            let place = self.order[j].expect("a mirrored point has a place");
-            let f = place.read(self.forces[j]);
-            self.rhs[2 * place.at] += f.x as f64;
-            self.rhs[2 * place.at + 1] += f.y as f64;
-        }
         self.matrix.clear_to_diagonal(0.0);
         for (o, &i) in self.sequence.iter().enumerate() {
             let d = diag(i) as f64;
@@ -187,29 +217,35 @@ impl Solver {
             self.matrix.add(2 * o, 2 * o, d);
             self.matrix.add(2 * o + 1, 2 * o + 1, d);
         }
-        for c in cons {
+        // Each element once: its explicit force at the predicted positions (the
+        // right-hand side) and its stiffness.
+        self.forces.iter_mut().for_each(|f| *f = Vec2::ZERO);
+        debug_assert_eq!(cons.len(), self.assembly.len(), "the elements prepared for");
+        for (c, assembly) in cons.iter().zip(&self.assembly) {
+            c.add_damped_force(&mut self.forces, damping);
             let k = c.stiffness as f64 * (1.0 + damping as f64);
             // The constraint's gradient over the solved displacements: a point and its
             // mirror image are one unknown, so their parts add.
-            let mut merged = [(0usize, [0.0f32; 2]); 3];
-            let mut len = 0;
-            for p in 0..c.count {
-                let Some(place) = self.order[c.idx[p]] else {
-                    continue;
-                };
-                let g = place.read(c.grad[p]).to_array();
-                match merged[..len].iter_mut().find(|(at, _)| *at == 2 * place.at) {
-                    Some((_, sum)) => {
-                        sum[0] += g[0];
-                        sum[1] += g[1];
-                    }
-                    None => {
-                        merged[len] = (2 * place.at, g);
-                        len += 1;
-                    }
+            let mut g = [[0.0f32; 2]; 3];
+            for (grad, point) in c.grad.iter().zip(&assembly.points) {
+                if let Some((slot, mirrored)) = *point {
+                    g[slot][0] += if mirrored { -grad.x } else { grad.x };
+                    g[slot][1] += grad.y;
                 }
             }
-            self.matrix.add_outer(k, &merged[..len]);
+            self.matrix
+                .add_stamped(k, &assembly.stamp, &g[..assembly.slots]);
+        }
+        for (o, &i) in self.sequence.iter().enumerate() {
+            let f = self.forces[i];
+            self.rhs[2 * o] = f.x as f64;
+            self.rhs[2 * o + 1] = f.y as f64;
+        }
+        for &j in &self.mirrored {
+            let place = self.order[j].expect("a mirrored point has a place");
+            let f = place.read(self.forces[j]);
+            self.rhs[2 * place.at] += f.x as f64;
+            self.rhs[2 * place.at + 1] += f.y as f64;
         }
         if !self.matrix.factor_and_solve(&mut self.rhs) {
             // Only non-finite input gets here; the step's health check then recovers.
