@@ -209,7 +209,7 @@ fn signed_angle(e1: Vec2, e2: Vec2) -> f32 {
     e1.perp_dot(e2).atan2(e1.dot(e2))
 }
 
-pub(super) fn wrap_angle(a: f32) -> f32 {
+fn wrap_angle(a: f32) -> f32 {
     let two_pi = std::f32::consts::TAU;
     a - two_pi * ((a + std::f32::consts::PI) / two_pi).floor()
 }
@@ -237,6 +237,7 @@ impl Constraint {
 
     /// Adds the Kelvin–Voigt force `−k·(C + τ·dC/dt)·∇C`, with `damping = τ/dt` and the
     /// rate taken over the step.
+    #[inline]
     pub(crate) fn add_damped_force(&self, out: &mut [Vec2], damping: f32) {
         let magnitude = self.stiffness * (self.value + damping * self.change);
         for k in 0..self.count {
@@ -254,26 +255,6 @@ fn stiffen_beyond(c: &mut Constraint, knee: f32, factor: f32) {
     }
 }
 
-/// Each counted element's strain or bend from rest alone (`Constraint::raw`, the same
-/// operations), in the order of [`constraints`] with the same `weights`: what the
-/// mesoglea's viscosity needs of the positions before a step, without the gradients.
-pub(super) fn raw_values<'a>(
-    body: &'a Body,
-    x: &'a [Vec2],
-    weights: &'a Weights,
-) -> impl Iterator<Item = f32> + 'a {
-    let stretch = |a: usize, b: usize, rest: f32| (x[b] - x[a]).length() - rest;
-    let springs =
-        counted(&body.springs, &weights.springs).map(move |(s, _)| stretch(s.a, s.b, s.rest));
-    let muscles =
-        counted(&body.muscles, &weights.muscles).map(move |(m, _)| stretch(m.a, m.b, m.rest));
-    let hinges = counted(&body.hinges, &weights.hinges)
-        .map(move |(h, _)| hinge_bend(x[h.a] - x[h.b], x[h.c] - x[h.b], h.rest));
-    let hoop_bends = counted(&body.hoop_bends, &weights.hoop_bends)
-        .map(move |(h, _)| slope_sine(x[h.b] - x[h.a]) - h.rest);
-    springs.chain(muscles).chain(hinges).chain(hoop_bends)
-}
-
 /// A hinge's bend from rest, between its edges `e1` and `e2` from the middle point.
 fn hinge_bend(e1: Vec2, e2: Vec2, rest: f32) -> f32 {
     wrap_angle(signed_angle(e1, e2) - rest)
@@ -281,16 +262,30 @@ fn hinge_bend(e1: Vec2, e2: Vec2, rest: f32) -> f32 {
 
 /// Every counted element as a constraint at the positions `x`, springs, muscles, hinges
 /// and hoop bends in that order, each with its stiffness times its weight (`weights`;
-/// [`Weights::default`] counts every element once).
-pub(super) fn constraints<'a>(
-    body: &'a Body,
-    x: &'a [Vec2],
-    weights: &'a Weights,
-) -> impl Iterator<Item = Constraint> + 'a {
+/// [`Weights::default`] counts every element once), handed to `visit`. With `before`,
+/// each one's strain or bend from rest there too, the same operations, for the mesoglea's
+/// viscosity (`Constraint::change`).
+///
+/// Plain loops, one list at a time: the chained iterators they replace spent more on
+/// asking each list whether it had run out than on the elements.
+pub(super) fn for_each_constraint(
+    body: &Body,
+    x: &[Vec2],
+    before: Option<&[Vec2]>,
+    weights: &Weights,
+    mut visit: impl FnMut(Constraint),
+) {
     let weighed = |mut c: Constraint, weight: f32| {
         c.stiffness *= weight;
         c
     };
+    // A length's or a slope's change over a step is far below π, where the wrap an
+    // angle needs is the identity: only the hinges take it.
+    let changed = |mut c: Constraint, raw_before: f32| {
+        c.change = c.raw - raw_before;
+        c
+    };
+    let length = |x: &[Vec2], a: usize, b: usize| (x[b] - x[a]).length();
     let stretch = |a: usize, b: usize, rest: f32, stiffness: f32| {
         let d = x[b] - x[a];
         let len = d.length();
@@ -305,21 +300,27 @@ pub(super) fn constraints<'a>(
             change: 0.0,
         }
     };
-    let springs = counted(&body.springs, &weights.springs).map(move |(s, w)| {
+    for (s, w) in counted(&body.springs, &weights.springs) {
         let mut c = stretch(s.a, s.b, s.rest, s.stiffness);
         if let Some(limit) = s.strain_limit {
             stiffen_beyond(&mut c, limit * s.rest, STIFFENING);
         }
-        weighed(c, w)
-    });
+        if let Some(p) = before {
+            c = changed(c, length(p, s.a, s.b) - s.rest);
+        }
+        visit(weighed(c, w));
+    }
     // A planar muscle spring pulls and pushes (paper 3.3); an r–z force generator only
     // pulls, as strongly as it is activated (`Drive`).
-    let muscles = counted(&body.muscles, &weights.muscles).map(move |(m, w)| {
+    for (m, w) in counted(&body.muscles, &weights.muscles) {
         let mut c = stretch(m.a, m.b, m.rest, m.stiffness);
         c.stiffness = m.stiffness_at(c.value);
-        weighed(c, w)
-    });
-    let hinges = counted(&body.hinges, &weights.hinges).map(move |(h, w)| {
+        if let Some(p) = before {
+            c = changed(c, length(p, m.a, m.b) - m.rest);
+        }
+        visit(weighed(c, w));
+    }
+    for (h, w) in counted(&body.hinges, &weights.hinges) {
         let e1 = x[h.a] - x[h.b];
         let e2 = x[h.c] - x[h.b];
         let l1 = e1.length_squared().max(1e-18);
@@ -337,15 +338,19 @@ pub(super) fn constraints<'a>(
             change: 0.0,
         };
         stiffen_beyond(&mut c, h.bend_limit, HINGE_STIFFENING);
-        weighed(c, w)
-    });
-    let hoop_bends = counted(&body.hoop_bends, &weights.hoop_bends).map(move |(h, w)| {
+        if let Some(p) = before {
+            let bent = hinge_bend(p[h.a] - p[h.b], p[h.c] - p[h.b], h.rest);
+            c.change = wrap_angle(c.raw - bent);
+        }
+        visit(weighed(c, w));
+    }
+    for (h, w) in counted(&body.hoop_bends, &weights.hoop_bends) {
         let d = x[h.b] - x[h.a];
         let len = d.length().max(1e-12);
         // ∂(d.y/|d|)/∂d = d.x·d⊥/|d|³.
         let grad = d.perp() * (d.x / (len * len * len));
         let change = slope_sine(d) - h.rest;
-        let c = Constraint {
+        let mut c = Constraint {
             idx: [h.a, h.b, h.b],
             grad: [-grad, grad, Vec2::ZERO],
             count: 2,
@@ -354,7 +359,17 @@ pub(super) fn constraints<'a>(
             raw: change,
             change: 0.0,
         };
-        weighed(c, w)
-    });
-    springs.chain(muscles).chain(hinges).chain(hoop_bends)
+        if let Some(p) = before {
+            c = changed(c, slope_sine(p[h.b] - p[h.a]) - h.rest);
+        }
+        visit(weighed(c, w));
+    }
+}
+
+/// Every counted element as a constraint at `x` ([`for_each_constraint`], no change).
+#[cfg(test)]
+pub(super) fn constraints(body: &Body, x: &[Vec2], weights: &Weights) -> Vec<Constraint> {
+    let mut all = Vec::new();
+    for_each_constraint(body, x, None, weights, |c| all.push(c));
+    all
 }

@@ -28,7 +28,9 @@ pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
 use crate::species::Species;
-use elements::{Constraint, constraints, raw_values, wrap_angle};
+#[cfg(test)]
+use elements::constraints;
+use elements::{Constraint, for_each_constraint};
 use glam::Vec2;
 use half::Weights;
 use implicit::Solver;
@@ -307,23 +309,17 @@ impl Body {
         let Split { bell, tentacles } = split;
         bell.clear();
         tentacles.clear();
-        // The strains before the step, in the same order, read only for the viscosity.
-        // Of a body held symmetric, the elements past the axis are left out and their
-        // mirror images count twice (`half`): the solve is on the half.
-        let mut before = raw_values(self, &self.points, &self.weights);
-        for mut c in constraints(self, predicted, &self.weights) {
-            if damping > 0.0
-                && let Some(before) = before.next()
-            {
-                c.change = wrap_angle(c.raw - before);
-            }
+        // The strains before the step are read only for the viscosity. Of a body held
+        // symmetric, the elements past the axis are left out and their mirror images
+        // count twice (`half`): the solve is on the half.
+        let before = (damping > 0.0).then_some(&self.points[..]);
+        for_each_constraint(self, predicted, before, &self.weights, |c| {
             if c.idx[..c.count].iter().all(|&i| i < bell_len) {
                 bell.push(c);
             } else {
                 tentacles.push(c);
             }
-        }
-        drop(before);
+        });
         // The tentacles move with the bell held where it is predicted to be.
         for c in tentacles.iter_mut() {
             for k in 0..c.count {
