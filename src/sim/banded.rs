@@ -165,55 +165,91 @@ impl BandedSpd {
         }
     }
 
-    /// [`Self::factor_and_solve`] for a half-bandwidth `b`, the matrix's own.
+    /// [`Self::factor_and_solve`] for a half-bandwidth `b`, the matrix's own. Past the
+    /// first `b` rows every row reaches `b` entries left of its diagonal, a count the
+    /// compiler can unroll when `b` is a constant; the first rows reach fewer.
     #[inline(always)]
     fn factor_and_solve_within(&mut self, b: usize, rhs: &mut [f64]) -> bool {
         debug_assert_eq!(b, self.band);
         let n = self.n;
-        let w = b + 1;
         for i in 0..n {
-            // Row i's entries run from column `first`; every column j of it shares that
-            // start with row j (j − b ≤ i − b), so each sum runs over k in first..j.
-            let first = i.saturating_sub(b);
-            let (done, rest) = self.lower.split_at_mut(i * w);
-            let row_i = &mut rest[..w];
-            for j in first..i {
-                // Σ over k ascending of L[i][k]·L[j][k]: both rows are stored from the
-                // diagonal down, so `t` counts down as k counts up.
-                let terms = j - first;
-                let row_j = &done[j * w..][..w];
-                let (ik, jk) = (&row_i[i - j + 1..][..terms], &row_j[1..][..terms]);
-                let mut sum = row_i[i - j];
-                for t in (0..terms).rev() {
-                    sum -= ik[t] * jk[t];
-                }
-                row_i[i - j] = sum * self.inverse[j];
-            }
-            let mut sum = row_i[0];
-            for &l in row_i[1..=i - first].iter().rev() {
-                sum -= l * l;
-            }
-            if sum <= 0.0 || !sum.is_finite() {
+            let whole = if i >= b {
+                self.factor_row(i, b, b)
+            } else {
+                self.factor_row(i, i, b)
+            };
+            if !whole {
                 return false;
             }
-            row_i[0] = sum.sqrt();
-            self.inverse[i] = 1.0 / row_i[0];
         }
         // Forward: L y = rhs.
         for i in 0..n {
-            let first = i.saturating_sub(b);
-            let row = &self.lower[i * w..i * w + w];
-            let sum = (first..i).fold(rhs[i], |sum, k| sum - row[i - k] * rhs[k]);
-            rhs[i] = sum * self.inverse[i];
+            if i >= b {
+                self.forward_row(i, b, b, rhs);
+            } else {
+                self.forward_row(i, i, b, rhs);
+            }
         }
         // Backward: Lᵀ x = y.
         for i in (0..n).rev() {
-            let last = (i + b + 1).min(n);
-            let sum =
-                (i + 1..last).fold(rhs[i], |sum, k| sum - self.lower[k * w + (k - i)] * rhs[k]);
-            rhs[i] = sum * self.inverse[i];
+            if i + b < n {
+                self.backward_row(i, b, b, rhs);
+            } else {
+                self.backward_row(i, n - 1 - i, b, rhs);
+            }
         }
         true
+    }
+
+    /// Row `i` of the factor, whose entries reach `reach` columns left of its diagonal.
+    /// Returns false where its pivot is not positive.
+    #[inline(always)]
+    fn factor_row(&mut self, i: usize, reach: usize, b: usize) -> bool {
+        let w = b + 1;
+        // Row i's entries run from column `first`; every column j of it shares that start
+        // with row j (j − b ≤ i − b), so each sum runs over k in first..j.
+        let first = i - reach;
+        let (done, rest) = self.lower.split_at_mut(i * w);
+        let row_i = &mut rest[..w];
+        for terms in 0..reach {
+            // Σ over k ascending of L[i][k]·L[j][k]: both rows are stored from the
+            // diagonal down, so `t` counts down as k counts up.
+            let j = first + terms;
+            let row_j = &done[j * w..][..w];
+            let (ik, jk) = (&row_i[i - j + 1..][..terms], &row_j[1..][..terms]);
+            let mut sum = row_i[i - j];
+            for t in (0..terms).rev() {
+                sum -= ik[t] * jk[t];
+            }
+            row_i[i - j] = sum * self.inverse[j];
+        }
+        let mut sum = row_i[0];
+        for &l in row_i[1..=reach].iter().rev() {
+            sum -= l * l;
+        }
+        if sum <= 0.0 || !sum.is_finite() {
+            return false;
+        }
+        row_i[0] = sum.sqrt();
+        self.inverse[i] = 1.0 / row_i[0];
+        true
+    }
+
+    /// Row `i` of the forward substitution, over the `reach` unknowns before it.
+    #[inline(always)]
+    fn forward_row(&self, i: usize, reach: usize, b: usize, rhs: &mut [f64]) {
+        let row = &self.lower[i * (b + 1)..][..b + 1];
+        let sum = (i - reach..i).fold(rhs[i], |sum, k| sum - row[i - k] * rhs[k]);
+        rhs[i] = sum * self.inverse[i];
+    }
+
+    /// Row `i` of the backward substitution, over the `reach` unknowns after it.
+    #[inline(always)]
+    fn backward_row(&self, i: usize, reach: usize, b: usize, rhs: &mut [f64]) {
+        let w = b + 1;
+        let sum = (i + 1..i + 1 + reach)
+            .fold(rhs[i], |sum, k| sum - self.lower[k * w + (k - i)] * rhs[k]);
+        rhs[i] = sum * self.inverse[i];
     }
 }
 

@@ -50,7 +50,8 @@ impl Fluid {
     }
 
     /// Sample of one component under the fluid's kernel. Outside the box, the nearest
-    /// faces' values.
+    /// faces' values. Inlined: its stencil, returned by value, is large.
+    #[inline]
     pub(crate) fn sample_component(&self, c: Component, p: Vec2) -> f32 {
         let field = match c {
             Component::U => &self.u,
