@@ -51,8 +51,15 @@ impl Resolution {
         } else {
             1.0
         };
+        // At the default scale a count is itself: no rounding (a call into libm on the
+        // baseline target, and this runs for every jellyfish every frame).
         let scaled = |n: u32, lo: u32, hi: u32| {
-            ((n as f32 * scale).round() as usize).clamp(lo as usize, hi as usize)
+            let n = if scale == 1.0 {
+                n as usize
+            } else {
+                (n as f32 * scale).round() as usize
+            };
+            n.clamp(lo as usize, hi as usize)
         };
         let rings = scaled(species.mesh_rings, 2, 256);
         use crate::species::limits::{MAX_DRAWN_ORAL_TUBES, oral_tubes};
