@@ -58,8 +58,13 @@ impl Coupling {
             fluid.locate(Component::V, *p, v);
         }
         // A mirrored point spreads through its partner's stencils: the same rows.
-        let rows = self.u.iter().chain(&self.v).map(Stencil::rows);
-        self.rows = rows.fold(0..0, span);
+        let mut rows = 0..0;
+        for stencils in [&self.u, &self.v] {
+            for stencil in stencils {
+                rows = span(rows, stencil.rows());
+            }
+        }
+        self.rows = rows;
     }
 
     /// How many points the last [`Self::locate`] read as their partners' mirrors, and how

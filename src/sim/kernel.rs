@@ -57,10 +57,13 @@ impl Stencil {
     }
 
     /// The rows of faces the stencil reaches.
+    /// A stencil's taps run in order of their faces (folded ends repeat the end face), so
+    /// its first and last rows bound them.
     pub(crate) fn rows(&self) -> Range<usize> {
-        let rows = self.y.index[..self.y.len].iter().map(|&j| j as usize);
-        match (rows.clone().min(), rows.max()) {
-            (Some(first), Some(last)) => first..last + 1,
+        let rows = &self.y.index[..self.y.len];
+        debug_assert!(rows.is_sorted(), "a stencil's rows in order");
+        match (rows.first(), rows.last()) {
+            (Some(&first), Some(&last)) => first as usize..last as usize + 1,
             _ => 0..0,
         }
     }
