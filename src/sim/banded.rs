@@ -94,61 +94,29 @@ impl BandedSpd {
     /// each entry `k·(gₐ·g_b)` (the product in `f32`, as the gradients are) added once.
     pub(crate) fn add_stamped(&mut self, k: f64, stamp: &Stamp, g: &[[f32; 2]]) {
         debug_assert_eq!(g.len(), stamp.points, "a gradient for the stamp's points");
-        // Each count of points on its own, unrolled: most of the body's couplings are one
-        // or two points, their entries a handful of loads and adds.
-        match *g {
-            [a] => self.add_entries::<3>(k, stamp, [a[0] * a[0], a[1] * a[0], a[1] * a[1]]),
-            [a, b] => self.add_entries::<10>(
-                k,
-                stamp,
-                [
-                    a[0] * a[0],
-                    a[1] * a[0],
-                    a[1] * a[1],
-                    b[0] * b[0],
-                    b[1] * b[0],
-                    b[1] * b[1],
-                    b[0] * a[0],
-                    b[0] * a[1],
-                    b[1] * a[0],
-                    b[1] * a[1],
-                ],
-            ),
-            [a, b, c] => self.add_entries::<21>(
-                k,
-                stamp,
-                [
-                    a[0] * a[0],
-                    a[1] * a[0],
-                    a[1] * a[1],
-                    b[0] * b[0],
-                    b[1] * b[0],
-                    b[1] * b[1],
-                    b[0] * a[0],
-                    b[0] * a[1],
-                    b[1] * a[0],
-                    b[1] * a[1],
-                    c[0] * c[0],
-                    c[1] * c[0],
-                    c[1] * c[1],
-                    c[0] * a[0],
-                    c[0] * a[1],
-                    c[1] * a[0],
-                    c[1] * a[1],
-                    c[0] * b[0],
-                    c[0] * b[1],
-                    c[1] * b[0],
-                    c[1] * b[1],
-                ],
-            ),
-            _ => {}
+        // Block by block in the stamp's order, unrolled: most of the body's couplings are
+        // one or two points, their entries a handful of loads and adds.
+        let own = |a: [f32; 2]| [a[0] * a[0], a[1] * a[0], a[1] * a[1]];
+        let cross = |p: [f32; 2], q: [f32; 2]| [p[0] * q[0], p[0] * q[1], p[1] * q[0], p[1] * q[1]];
+        let at = &stamp.places;
+        if let [a, ..] = *g {
+            self.add_at(k, at, own(a));
+        }
+        if let [a, b, ..] = *g {
+            self.add_at(k, &at[3..], own(b));
+            self.add_at(k, &at[6..], cross(b, a));
+        }
+        if let [a, b, c] = *g {
+            self.add_at(k, &at[10..], own(c));
+            self.add_at(k, &at[13..], cross(c, a));
+            self.add_at(k, &at[17..], cross(c, b));
         }
     }
 
-    /// Adds `k` times each of `values` at the stamp's first `E` places.
+    /// Adds `k` times each of `values` at the first of `places`.
     #[inline(always)]
-    fn add_entries<const E: usize>(&mut self, k: f64, stamp: &Stamp, values: [f32; E]) {
-        let places: &[usize; E] = stamp.places[..E].try_into().expect("E entries");
+    fn add_at<const E: usize>(&mut self, k: f64, places: &[usize], values: [f32; E]) {
+        let places: &[usize; E] = places[..E].try_into().expect("E entries");
         for (&at, value) in places.iter().zip(values) {
             self.lower[at] += k * value as f64;
         }
