@@ -307,7 +307,15 @@ pub fn tentacle_points(s: &Species, rings: usize) -> usize {
     let most = rings / 2 + 1;
     let share = (s.tentacle_length / s.diameter).clamp(0.0, 1.0);
     let share = if share.is_finite() { share } else { 1.0 };
-    ((share * (rings / 2) as f32).round() as usize + 1).clamp(3.min(most), most)
+    (rounded(share * (rings / 2) as f32) + 1).clamp(3.min(most), most)
+}
+
+/// `x.round()` as a count, for `x` in [0, 2²³]: the same number without the call into
+/// libm that `f32::round` is on the baseline x86-64 target (a mesh's resolution is asked
+/// for every jellyfish every frame).
+pub(crate) fn rounded(x: f32) -> usize {
+    let whole = x as usize;
+    whole + usize::from(x - whole as f32 >= 0.5)
 }
 
 /// Sides of the manubrium's and the oral arms' tubes: eight, so a blade has two edges.

@@ -450,3 +450,23 @@ fn only_oral_tubes_that_reach_out_of_the_cavity_get_guides() {
     };
     assert_eq!(unguided.oral_guide_count(), 0);
 }
+
+/// A count rounded without libm is `f32::round`'s, ties and their neighbours included,
+/// over the range a mesh's rings ask for and well past it.
+#[test]
+fn a_count_rounds_as_f32_round_does() {
+    let mut xs: Vec<f32> = (0..=4096).map(|k| k as f32 / 16.0).collect();
+    for k in 0..=300 {
+        let tie = k as f32 + 0.5;
+        xs.extend([tie, tie.next_down(), tie.next_up(), (k as f32).next_up()]);
+    }
+    xs.extend([0.49999997, 8_388_607.5, 8_388_608.0]);
+    for x in xs {
+        assert_eq!(
+            super::limits::rounded(x),
+            x.round() as usize,
+            "{x} ({:#x})",
+            x.to_bits()
+        );
+    }
+}

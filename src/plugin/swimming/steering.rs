@@ -74,12 +74,13 @@ impl Steering {
     /// far forward the bell moved in the step, in diameters (nothing while it coasts or
     /// recoils), `contracting` whether the step is in the power stroke.
     pub fn turn(&self, rotation: Quat, position: Vec3, surge: f32, contracting: bool) -> Quat {
-        let Some(desired) = self.desired(position) else {
-            return rotation;
-        };
+        // (Asked in this order: most steps do not contract, and need no heading.)
         if !contracting || surge.is_nan() || surge <= 0.0 || !self.agility.is_finite() {
             return rotation;
         }
+        let Some(desired) = self.desired(position) else {
+            return rotation;
+        };
         let axis = rotation * Vec3::Y;
         let angle = axis.angle_between(desired);
         if angle.is_nan() || angle <= 1e-6 {

@@ -38,6 +38,10 @@ pub(crate) struct Travel<'a> {
 pub(crate) struct HeldWater {
     current: Vec3,
     vorticity: Vec3,
+    /// The turn that vorticity gives in a step of `spun_for` seconds ([`spin`]): a far
+    /// jellyfish's steps are all its species' one step, so it is the same every step.
+    spin: Option<Quat>,
+    spun_for: f32,
     /// Steps it is held for yet.
     steps_left: u32,
 }
@@ -47,14 +51,14 @@ impl Travel<'_> {
     pub fn step(&self, stroke: &Stroke, motion: &mut SwimMotion) {
         motion.held_water = None;
         let (current, vorticity) = self.read_water(stroke, motion);
-        self.advance(stroke, motion, current, vorticity);
+        self.advance(stroke, motion, current, spin(vorticity, stroke.step));
     }
 
     /// Moves a far jellyfish's `motion` by one step of its replayed stroke, with the water
     /// it read at most [`FAR_REFRESH`] seconds of steps ago (a whole number of steps, so
     /// the same whatever the frames).
     pub fn step_far(&self, stroke: &Stroke, motion: &mut SwimMotion) {
-        let held = match motion.held_water {
+        let mut held = match motion.held_water {
             Some(held) if held.steps_left > 0 => HeldWater {
                 steps_left: held.steps_left - 1,
                 ..held
@@ -65,12 +69,18 @@ impl Travel<'_> {
                 HeldWater {
                     current,
                     vorticity,
+                    spin: None,
+                    spun_for: f32::NAN,
                     steps_left: steps - 1,
                 }
             }
         };
+        // (NaN, never equal, until the first step works it out.)
+        if held.spun_for != stroke.step {
+            (held.spin, held.spun_for) = (spin(held.vorticity, stroke.step), stroke.step);
+        }
         motion.held_water = Some(held);
-        self.advance(stroke, motion, held.current, held.vorticity);
+        self.advance(stroke, motion, held.current, held.spin);
     }
 
     /// The water's current and vorticity where the jellyfish is, when the step ends.
@@ -84,8 +94,8 @@ impl Travel<'_> {
         (current, vorticity)
     }
 
-    /// Moves `motion` by one step in water of `current` and `vorticity`.
-    fn advance(&self, stroke: &Stroke, motion: &mut SwimMotion, current: Vec3, vorticity: Vec3) {
+    /// Moves `motion` by one step in water of `current` that turns it by `spin` ([`spin`]).
+    fn advance(&self, stroke: &Stroke, motion: &mut SwimMotion, current: Vec3, spin: Option<Quat>) {
         let species = stroke.species;
         let dt = stroke.step;
         let surge = stroke.swim - motion.swum;
@@ -94,9 +104,8 @@ impl Travel<'_> {
             mut position,
             mut rotation,
         } = motion.pose;
-        // A small body in a shear spins with half the water's vorticity.
-        if vorticity.is_finite() && vorticity != Vec3::ZERO {
-            rotation = (Quat::from_scaled_axis(0.5 * vorticity * dt) * rotation).normalize();
+        if let Some(spin) = spin {
+            rotation = (spin * rotation).normalize();
         }
         if let Some(steering) = self.steering {
             let phase = stroke.phase;
@@ -114,4 +123,11 @@ impl Travel<'_> {
         motion.velocity = (position - before) / dt;
         motion.pose = Pose { position, rotation };
     }
+}
+
+/// The turn of a small body in water of `vorticity` over a step of `dt` seconds: in a
+/// shear it spins with half the water's vorticity. None in still or unreadable water.
+fn spin(vorticity: Vec3, dt: f32) -> Option<Quat> {
+    (vorticity.is_finite() && vorticity != Vec3::ZERO)
+        .then(|| Quat::from_scaled_axis(0.5 * vorticity * dt))
 }
