@@ -6,6 +6,7 @@
 use super::settings::JellyfishSettings;
 use super::timings::JellyfishTimings;
 use bevy::asset::{AssetEventSystems, AssetTrackingSystems};
+use bevy::camera::visibility::VisibilitySystems;
 use bevy::prelude::*;
 use bevy::transform::TransformSystems;
 
@@ -24,6 +25,9 @@ pub enum JellyfishSystems {
     WriteTransforms,
     /// PostUpdate: rebuild meshes in place, before bounds and render extraction.
     RebuildMeshes,
+    /// PostUpdate, after Bevy's transform propagation: each jellyfish's parts (its
+    /// tentacles and glow layer) placed and bounded where their bell is, before Bevy culls.
+    PlaceParts,
     /// PostUpdate: materials made, updated after edits and put on new meshes.
     Materials,
     /// FixedUpdate: schools set their members' headings (steer your own before
@@ -75,6 +79,12 @@ impl Plugin for JellyfishSchedulePlugin {
                     .chain()
                     .before(TransformSystems::Propagate)
                     .before(AssetEventSystems),
+            )
+            .configure_sets(
+                PostUpdate,
+                JellyfishSystems::PlaceParts
+                    .after(TransformSystems::Propagate)
+                    .before(VisibilitySystems::CheckVisibility),
             )
             .configure_sets(
                 PostUpdate,

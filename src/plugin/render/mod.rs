@@ -8,6 +8,7 @@ mod geometry;
 mod looks;
 mod materials;
 mod meshes;
+mod parts;
 mod patterns;
 mod rebuild;
 mod recorded;
@@ -52,6 +53,10 @@ impl Plugin for JellyfishRenderPlugin {
                 )
                     .chain()
                     .in_set(JellyfishSystems::RebuildMeshes),
+            )
+            .add_systems(
+                PostUpdate,
+                parts::place_parts.in_set(JellyfishSystems::PlaceParts),
             );
         templates::build(app);
     }

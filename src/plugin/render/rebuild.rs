@@ -3,9 +3,8 @@
 //! skipped for jellyfish no camera sees (see [`culling`](super::culling)).
 
 use super::culling::{active_frusta, seen, slice_bounds};
-use super::meshes::{
-    CPU_MESH_TAG, FarInstance, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath,
-};
+use super::meshes::{CPU_MESH_TAG, FarInstance, JellyfishMeshes, SurfacePath};
+use super::parts::{glow_layer, tentacle_layer};
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::settings::JellyfishSettings;
@@ -202,12 +201,11 @@ type HeldTrail = Option<(Arc<[Vec3]>, usize)>;
 
 /// The mostly serial half: copy the buffers into the mesh assets (creating them the first
 /// time). An empty surface (a species without tentacles) is hidden, never handed to Bevy.
-/// Every jellyfish's and its children's bounds are copied side by side first: ten thousand
-/// of them were a serial stretch of the frame.
+/// Every jellyfish's bounds are copied side by side first: ten thousand of them were a
+/// serial stretch of the frame (its parts take them in [`place_parts`](super::parts)).
 pub(super) fn write_meshes(
     mut commands: Commands,
     mut jellyfish: Query<(Entity, &mut JellyfishMeshes, Option<&mut Aabb>)>,
-    mut child_bounds: Query<(&mut Aabb, &ChildOf), (ChildPart, Without<JellyfishMeshes>)>,
     mut assets: ResMut<Assets<Mesh>>,
     timings: Res<JellyfishTimings>,
     mut unbounded: Local<Parallel<Vec<(Entity, Aabb)>>>,
@@ -221,13 +219,6 @@ pub(super) fn write_meshes(
             (Some(bounds), None) => unbounded.borrow_local_mut().push((entity, bounds)),
             (None, _) => {}
         });
-    child_bounds.par_iter_mut().for_each(|(mut aabb, parent)| {
-        if let Ok((_, meshes, _)) = jellyfish.get(parent.parent())
-            && let Some(bounds) = meshes.bounds
-        {
-            *aabb = bounds;
-        }
-    });
     for (entity, bounds) in unbounded.drain() {
         commands.entity(entity).insert((bounds, NoAutoAabb));
     }
@@ -285,13 +276,8 @@ pub(super) fn write_meshes(
                 let handle = assets.add(new_mesh(tentacles, RenderAssetUsages::default()));
                 let child = commands
                     .spawn((
-                        JellyfishTentacles,
-                        Mesh3d(handle.clone()),
+                        tentacle_layer(entity, Mesh3d(handle.clone()), meshes.bounds),
                         MeshTag(CPU_MESH_TAG),
-                        Transform::default(),
-                        meshes.bounds.unwrap_or_default(),
-                        NoAutoAabb,
-                        ChildOf(entity),
                     ))
                     .id();
                 meshes.tentacles = Some(handle);
@@ -301,21 +287,6 @@ pub(super) fn write_meshes(
         }
     }
     timings.add_meshing(start.elapsed());
-}
-
-/// A jellyfish's part drawn by a child entity: its tentacles or its glow layer.
-type ChildPart = Or<(With<JellyfishTentacles>, With<JellyfishGlow>)>;
-
-/// The glow layer's child: the umbrella's mesh again, bounded like the umbrella.
-pub(crate) fn glow_layer(parent: Entity, mesh: Mesh3d, bounds: Option<Aabb>) -> impl Bundle {
-    (
-        JellyfishGlow,
-        mesh,
-        Transform::default(),
-        bounds.unwrap_or_default(),
-        NoAutoAabb,
-        ChildOf(parent),
-    )
 }
 
 pub(crate) fn new_mesh(b: &mut SurfaceBuffers, usage: RenderAssetUsages) -> Mesh {

@@ -2,6 +2,7 @@
 //! leaves; a school starts over a few frames; parts of the plugin can be left out.
 
 use super::*;
+use bevy::camera::primitives::Aabb;
 
 #[test]
 fn a_spawned_jellyfish_swims_along_its_axis() {
@@ -60,6 +61,66 @@ fn its_mesh_changes_between_frames() {
         app.world().get::<ChildOf>(child).unwrap().parent(),
         e,
         "tentacles are one child mesh"
+    );
+}
+
+#[test]
+fn its_parts_sit_on_the_bell_wherever_it_is_carried() {
+    let mut app = app();
+    let h = add_species(&mut app, species());
+    // A jellyfish carried by a turning, moving parent: its parts must follow both.
+    let carrier = app
+        .world_mut()
+        .spawn(Transform::from_xyz(5.0, 0.0, 0.0))
+        .id();
+    let e = app
+        .world_mut()
+        .spawn((
+            Jellyfish::new(h).with_phase(0.2),
+            Transform::from_xyz(0.0, 1.0, 0.0).with_scale(Vec3::splat(3.0)),
+            ChildOf(carrier),
+        ))
+        .id();
+    let on_the_bell = |app: &App| {
+        let meshes = app.world().get::<JellyfishMeshes>(e).unwrap();
+        let bell = *app.world().get::<GlobalTransform>(e).unwrap();
+        let bounds = *app.world().get::<Aabb>(e).unwrap();
+        for part in [meshes.tentacle_entity, meshes.glow_entity] {
+            let part = part.expect("tentacles and a glow layer");
+            assert_eq!(app.world().get::<ChildOf>(part).unwrap().parent(), e);
+            assert!(
+                app.world().get::<Transform>(part).is_none(),
+                "a part holds no Transform for propagation to multiply"
+            );
+            assert_eq!(*app.world().get::<GlobalTransform>(part).unwrap(), bell);
+            assert_eq!(*app.world().get::<Aabb>(part).unwrap(), bounds);
+        }
+        bell
+    };
+    run(&mut app, 3);
+    let first = on_the_bell(&app);
+    assert!(
+        (first.translation() - Vec3::new(5.0, 1.0, 0.0)).length() < 0.05,
+        "carried: {first:?}"
+    );
+    app.world_mut()
+        .get_mut::<Transform>(carrier)
+        .unwrap()
+        .rotate_z(1.0);
+    // A part given a Transform again (inserting `Mesh3d` brings one) loses it.
+    let tentacles = app
+        .world()
+        .get::<JellyfishMeshes>(e)
+        .unwrap()
+        .tentacle_entity;
+    app.world_mut()
+        .entity_mut(tentacles.unwrap())
+        .insert(Transform::from_xyz(9.0, 9.0, 9.0));
+    run(&mut app, 2);
+    let turned = on_the_bell(&app);
+    assert!(
+        turned.rotation().angle_between(first.rotation()) > 0.9,
+        "the carrier's turn reached the bell and its parts"
     );
 }
 

@@ -4,13 +4,13 @@
 use super::material::SurfaceMaterial;
 use super::upload::SurfaceSlots;
 use crate::plugin::render::looks::SpeciesMaterials;
-use crate::plugin::render::meshes::{JellyfishMeshes, JellyfishTentacles, SurfacePath};
-use crate::plugin::render::rebuild::{glow_layer, new_mesh};
+use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
+use crate::plugin::render::parts::{glow_layer, tentacle_layer};
+use crate::plugin::render::rebuild::new_mesh;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
 use crate::shape::{JellyMesh, Resolution, SliceOutline, build_at};
 use bevy::asset::RenderAssetUsages;
-use bevy::camera::visibility::NoAutoAabb;
 use bevy::mesh::MeshTag;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -182,13 +182,8 @@ pub(crate) fn set_up(
             (Some(mesh), None) => {
                 let child = commands
                     .spawn((
-                        JellyfishTentacles,
-                        Mesh3d(mesh),
+                        tentacle_layer(entity, Mesh3d(mesh), meshes.bounds),
                         tag(slot, 1),
-                        Transform::default(),
-                        meshes.bounds.unwrap_or_default(),
-                        NoAutoAabb,
-                        ChildOf(entity),
                     ))
                     .id();
                 meshes.tentacle_entity = Some(child);
