@@ -4,6 +4,7 @@
 
 use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::prelude::*;
+use bevy::transform::StaticTransformOptimizations;
 use bevy_jellyfish::Species;
 use bevy_jellyfish::plugin::JellyfishSchool;
 
@@ -30,7 +31,10 @@ pub fn plugin(app: &mut App) {
     app.add_systems(
         Update,
         respawn.run_if(resource_exists_and_changed::<School>),
-    );
+    )
+    // Everything in the tank swims: Bevy's marking of unmoved subtrees would find none
+    // and cost 2% of the 10,002 frame (`docs/benchmarks.md`).
+    .insert_resource(StaticTransformOptimizations::Disabled);
 }
 
 /// The tank's water the schools keep to: its centre and half extents.
