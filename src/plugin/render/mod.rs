@@ -12,6 +12,7 @@ mod parts;
 mod patterns;
 mod rebuild;
 mod recorded;
+mod resolutions;
 mod templates;
 mod tissue;
 

@@ -6,6 +6,7 @@ use super::culling::{active_frusta, seen, slice_bounds};
 use super::meshes::{CPU_MESH_TAG, FarInstance, JellyfishMeshes, SurfacePath};
 use super::parts::{glow_layer, tentacle_layer};
 use super::recorded::{RecordedFrames, drawn_view, shown_step};
+use super::resolutions::Resolutions;
 use crate::plugin::interpolation::{SliceHistory, Snapshot};
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::{JellyfishSlice, LiveSlice, ONE_AT_A_TIME, SMALL_BATCHES, Tier};
@@ -37,12 +38,17 @@ pub(super) fn build_buffers(
     let frusta = active_frusta(&cameras);
     recorded.prune();
     let (frusta, recorded, settings) = (&frusta[..], &*recorded, &*settings);
-    let batch = || BatchClock::new(&timings, Spent::Meshing);
-    let shape = |batch: &mut BatchClock, (slice, history, mut meshes, transform): ShapedItem| {
+    let batch = || {
+        let clock = BatchClock::new(&timings, Spent::Meshing);
+        (clock, Resolutions::default())
+    };
+    let shape = |(clock, resolutions): &mut (BatchClock, Resolutions),
+                 (slice, history, mut meshes, transform): ShapedItem| {
         if slice.started() {
-            batch.time(slice.tier() as usize, || {
+            clock.time(slice.tier() as usize, || {
                 let at = (transform, frusta);
-                shape_one(slice, history, &mut meshes, at, recorded, settings)
+                let res = resolutions.of(&slice.species, settings);
+                shape_one(slice, history, &mut meshes, at, recorded, res)
             });
         }
     };
@@ -74,7 +80,7 @@ fn shape_one(
     meshes: &mut JellyfishMeshes,
     (transform, frusta): (&GlobalTransform, &[Frustum]),
     recorded: &RecordedFrames,
-    settings: &JellyfishSettings,
+    res: &Resolution,
 ) {
     let Some((a, b, t)) = history.shown() else {
         return;
@@ -107,25 +113,24 @@ fn shape_one(
     if !(meshes.seen || templates && block.is_empty()) {
         return;
     }
-    let res = settings.resolution(&slice.species);
-    let view = drawn_view(shown, step.is_some(), &slice.rest_bell, &res, trails);
+    let view = drawn_view(shown, step.is_some(), &slice.rest_bell, res, trails);
     let (seed, time) = (slice.seed, shown.time as f32);
     let step = step.and_then(|s| s.recorded.as_ref());
     // The cycle it drew from last frame, if still the one: `None` keeps it held.
     let recorded_step = step.filter(|_| templates).and_then(|(cache, index)| {
         if let Some((held, _)) = shared.as_ref()
-            && held.plays(cache, &slice.species, res)
+            && held.plays(cache, &slice.species, *res)
         {
             return held.start(*index).map(|_| (None, *index));
         }
-        let cycle = recorded.cycle(cache, &slice.species, res)?;
+        let cycle = recorded.cycle(cache, &slice.species, *res)?;
         cycle.start(*index).map(|_| (Some(cycle), *index))
     });
     let built = if let Some((cycle, index)) = recorded_step {
         pack_far(
             shown,
             &slice.species,
-            &res,
+            res,
             (seed, time),
             view.trail,
             (block, instance, instance_trail),
@@ -139,7 +144,7 @@ fn shape_one(
     } else if templates {
         let mut packed = std::mem::take(block);
         packed.clear();
-        let result = packer.pack(&view, &slice.species, res, seed, time, &mut packed);
+        let result = packer.pack(&view, &slice.species, *res, seed, time, &mut packed);
         // On an error the last frame stays, its shared step with it.
         if result.is_ok() || block.is_empty() {
             *block = packed;
@@ -148,7 +153,7 @@ fn shape_one(
         }
         result
     } else {
-        shape::build_at(buffers, &view, &slice.species, res, seed, time)
+        shape::build_at(buffers, &view, &slice.species, *res, seed, time)
             .map(|()| meshes.dirty = true)
     };
     if let Err(e) = built {

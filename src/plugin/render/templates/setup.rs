@@ -7,6 +7,7 @@ use crate::plugin::render::looks::SpeciesMaterials;
 use crate::plugin::render::meshes::{JellyfishMeshes, SurfacePath};
 use crate::plugin::render::parts::{glow_layer, tentacle_layer};
 use crate::plugin::render::rebuild::new_mesh;
+use crate::plugin::render::resolutions::Resolutions;
 use crate::plugin::settings::JellyfishSettings;
 use crate::plugin::slice::JellyfishSlice;
 use crate::shape::{JellyMesh, Resolution, SliceOutline, build_at};
@@ -107,15 +108,15 @@ pub(crate) fn set_up(
     // side by side (ten thousand, a resolution worked out for each, were a serial stretch
     // of the frame), then moved in entity order.
     jellyfish.par_iter().for_each_init(
-        || moving.borrow_local_mut(),
-        |list, (entity, slice, meshes, material)| {
+        || (moving.borrow_local_mut(), Resolutions::default()),
+        |(list, resolutions), (entity, slice, meshes, material)| {
             if !slice.started() {
                 return;
             }
             let wanted = wanted_path(material);
             if meshes.path != Some(wanted)
                 || wanted == SurfacePath::Templates
-                    && meshes.written != Some(settings.resolution(&slice.species))
+                    && meshes.written.as_ref() != Some(resolutions.of(&slice.species, &settings))
             {
                 list.push(entity);
             }
