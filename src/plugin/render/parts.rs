@@ -10,7 +10,7 @@ use bevy::camera::visibility::NoAutoAabb;
 use bevy::prelude::*;
 
 /// A jellyfish's part drawn by a child entity: its tentacles or its glow layer.
-pub(crate) type Part = Or<(With<JellyfishTentacles>, With<JellyfishGlow>)>;
+type Part = Or<(With<JellyfishTentacles>, With<JellyfishGlow>)>;
 
 /// The tentacles' child: drawn with `mesh`, bounded like the umbrella.
 pub(crate) fn tentacle_layer(parent: Entity, mesh: Mesh3d, bounds: Option<Aabb>) -> impl Bundle {
