@@ -38,12 +38,14 @@ pub(super) fn build_buffers(
     let frusta = active_frusta(&cameras);
     recorded.prune();
     let (frusta, recorded, settings) = (&frusta[..], &*recorded, &*settings);
+    // Boxed: `for_each_init` hands a batch's state through every item by value.
     let batch = || {
         let clock = BatchClock::new(&timings, Spent::Meshing);
-        (clock, Resolutions::default())
+        Box::new((clock, Resolutions::default()))
     };
-    let shape = |(clock, resolutions): &mut (BatchClock, Resolutions),
+    let shape = |state: &mut Box<(BatchClock, Resolutions)>,
                  (slice, history, mut meshes, transform): ShapedItem| {
+        let (clock, resolutions) = &mut **state;
         if slice.started() {
             clock.time(slice.tier() as usize, || {
                 let at = (transform, frusta);

@@ -57,8 +57,9 @@ pub(super) fn step_slices(
     };
     let still = AmbientWater::still();
     let water = water.as_deref().unwrap_or(&still);
-    let batch = || BatchClock::new(&timings, Spent::Simulation);
-    let step = |batch: &mut BatchClock, item: StepItem| {
+    // Boxed: `for_each_init` hands a batch's state through every item by value.
+    let batch = || Box::new(BatchClock::new(&timings, Spent::Simulation));
+    let step = |batch: &mut Box<BatchClock>, item: StepItem| {
         let tier = item.1.tier as usize;
         batch.time(tier, || {
             step_one(item, &at, water, &events);
