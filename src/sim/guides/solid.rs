@@ -88,12 +88,16 @@ impl Solid {
     /// of the cavity only), outside the cavity; put back just outside the nearest point
     /// of the outline, at the same angle around the axis.
     pub fn keep_out(&self, p: Vec3, reference: Vec3) -> Vec3 {
+        // Most nodes hang below the bell's box: nothing to keep them out of.
+        if !self.near(meridian(p)) {
+            return p;
+        }
         let outline = if self.contains(reference) {
             &self.cavity
         } else {
             &self.whole
         };
-        if !(self.near(meridian(p)) && inside(outline, meridian(p))) {
+        if !inside(outline, meridian(p)) {
             return p;
         }
         // Where the outline folds back on itself (a contracted margin), just past the
