@@ -94,7 +94,7 @@ impl OralArms {
                 } else {
                     (lean, limp)
                 };
-                let carried = chain[i] + dt * fluid.velocity_at(chain[i]);
+                let carried = chain[i] + dt * fluid.tracer_velocity(chain[i]);
                 let hanging = chain[i - 1] + segment * rest;
                 let moved = carried + stiffness * (hanging - carried);
                 chain[i] = chain[i - 1] + segment * (moved - chain[i - 1]).normalize_or(rest);

@@ -101,7 +101,7 @@ fn draw_particles(
         if !(0.0..size).contains(&d.x) || !(0.0..size).contains(&d.y) {
             return false;
         }
-        *p += fluid.velocity_at(d) * dt;
+        *p += fluid.tracer_velocity(d) * dt;
         p.is_finite() && (*p - centre).length() < 4.0 * spread
     });
     for p in &trace.particles {

@@ -9,6 +9,7 @@ use super::symmetry;
 #[cfg(target_arch = "x86_64")]
 use super::window::{self, avx::Carried};
 use super::{Advection, Fluid};
+use glam::Vec2;
 
 impl Fluid {
     /// Self-advection by the species' scheme ([`Advection`]), then the walls again.
@@ -20,6 +21,20 @@ impl Fluid {
             Advection::MacCormack => self.advect_maccormack(s),
         }
         self.enforce_walls();
+    }
+
+    /// The velocity a passive tracer at `p` (m) is carried with: each component bilinear
+    /// between its four nearest faces, as the advection's own trace reads it (outside the
+    /// box, the nearest faces'). A tracer pushes nothing back, so it needs none of the
+    /// kernel's adjointness with spreading ([`Fluid::velocity_at`]), which costs a stencil
+    /// of up to forty faces a component.
+    pub(crate) fn tracer_velocity(&self, p: Vec2) -> Vec2 {
+        let n = self.n;
+        let (x, y) = (p.x / self.h, p.y / self.h);
+        Vec2::new(
+            linear_sample(&self.u, n + 1, n, x, y - 0.5),
+            linear_sample(&self.v, n, n + 1, x - 0.5, y),
+        )
     }
 
     /// Stam's semi-Lagrangian step: each face takes the value found by tracing the flow
