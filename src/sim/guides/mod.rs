@@ -80,6 +80,9 @@ pub struct GuideChains {
     velocity: Vec<Vec3>,
     /// The reference of the last step (where the slice drew each guide), m.
     reference: Vec<Vec3>,
+    /// Each of its segments' length, m, at the node that ends it (a root's is 0): a far
+    /// jellyfish trails from one reference a whole cycle long.
+    lengths: Vec<f32>,
 }
 
 /// What one step of the guides needs besides their state.
@@ -169,6 +172,7 @@ impl GuideChains {
             offsets: vec![Vec3::ZERO; n],
             velocity: vec![Vec3::ZERO; n],
             reference: Vec::new(),
+            lengths: Vec::new(),
         }
     }
 
@@ -238,8 +242,11 @@ impl GuideChains {
         }
         for g in 0..self.guides {
             let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
+            let reference = &self.reference[range.clone()];
+            let lengths = segment_lengths(reference);
             inextensible(
-                &self.reference[range.clone()],
+                reference,
+                &lengths,
                 &mut self.offsets[range],
                 solid,
                 self.hanging,
@@ -275,16 +282,18 @@ impl GuideChains {
                 let keep = relaxation.max(0.0) / (relaxation.max(0.0) + dt);
                 offsets.iter_mut().for_each(|d| *d *= keep);
             }
-            let spacing = length(reference) / (GUIDE_NODES - 1) as f32;
+            let lengths = segment_lengths(reference);
+            let spacing = lengths[1..].iter().sum::<f32>() / (GUIDE_NODES - 1) as f32;
             let rate = s.filament.bending / (s.filament.normal_drag.max(1e-12) * spacing.powi(4));
             straighten(offsets, (rate * dt).min(0.25));
-            inextensible(reference, offsets, s.solid, self.hanging);
+            inextensible(reference, &lengths, offsets, s.solid, self.hanging);
             for m in 1..GUIDE_NODES {
                 velocity[m] = (offsets[m] - before[m]) / dt;
             }
         }
         self.reference.clear();
         self.reference.extend_from_slice(s.reference);
+        self.lengths.clear();
         if !self.offsets.iter().all(|d| d.is_finite()) {
             self.reset();
         }
@@ -298,10 +307,19 @@ impl GuideChains {
         }
         // Below a tenth of a millimetre a second the fringe is simply carried off.
         let towing = towing.max(1e-4);
+        // The segments' lengths, worked out again only when the reference has changed.
+        if self.lengths.len() != reference.len() || self.reference != reference {
+            self.reference.clear();
+            self.reference.extend_from_slice(reference);
+            self.lengths.clear();
+            let each = reference.chunks_exact(GUIDE_NODES).map(segment_lengths);
+            self.lengths.extend(each.flatten());
+        }
         for (g, water) in water.iter().enumerate() {
             let range = g * GUIDE_NODES..(g + 1) * GUIDE_NODES;
             let reference = &reference[range.clone()];
-            let step = length(reference) / (GUIDE_NODES - 1) as f32;
+            let lengths = &self.lengths[range.clone()];
+            let step = lengths[1..].iter().sum::<f32>() / (GUIDE_NODES - 1) as f32;
             let offsets = &mut self.offsets[range.clone()];
             // Bent back over a relaxation time, a part hanging within the bell is moved
             // no further than the water takes it in that time.
@@ -312,11 +330,9 @@ impl GuideChains {
             for (m, d) in offsets.iter_mut().enumerate() {
                 *d = *water * (m as f32 * step / towing).min(most);
             }
-            inextensible(reference, offsets, solid, self.hanging);
+            inextensible(reference, lengths, offsets, solid, self.hanging);
             self.velocity[range].fill(Vec3::ZERO);
         }
-        self.reference.clear();
-        self.reference.extend_from_slice(reference);
         if !self.offsets.iter().all(|d| d.is_finite()) {
             self.reset();
         }
@@ -330,9 +346,14 @@ impl GuideChains {
     }
 }
 
-/// The length of a polyline.
-fn length(points: &[Vec3]) -> f32 {
-    points.windows(2).map(|w| w[0].distance(w[1])).sum()
+/// The length of each segment of one guide's reference, at the node that ends it (the
+/// root's 0).
+fn segment_lengths(reference: &[Vec3]) -> [f32; GUIDE_NODES] {
+    let mut lengths = [0.0; GUIDE_NODES];
+    for (l, w) in lengths[1..].iter_mut().zip(reference.windows(2)) {
+        *l = w[0].distance(w[1]);
+    }
+    lengths
 }
 
 /// Bending: each interior offset moves `share` of the way to its neighbours' mean, so a
@@ -353,7 +374,14 @@ fn straighten(offsets: &mut [Vec3], share: f32) {
 /// slice itself draws a node in the wall, only out of the cavity; the guides carry what
 /// the slice cannot see, not a second opinion on what it can), or for guides hanging
 /// within it, from passing through its wall ([`Solid::keep_within`]).
-fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging: Hanging) {
+/// `lengths` are the reference's segments' ([`segment_lengths`]).
+fn inextensible(
+    reference: &[Vec3],
+    lengths: &[f32],
+    offsets: &mut [Vec3],
+    solid: &Solid,
+    hanging: Hanging,
+) {
     offsets[0] = Vec3::ZERO;
     let mut previous = reference[0];
     // A root on the subumbrella (the manubrium's, at the apex) is on the cavity's edge:
@@ -361,7 +389,7 @@ fn inextensible(reference: &[Vec3], offsets: &mut [Vec3], solid: &Solid, hanging
     let first = reference[0].lerp(reference[1.min(reference.len() - 1)], 0.5);
     let mut in_cavity = matches!(hanging, Hanging::Within { .. }) && solid.in_cavity_at(first);
     for m in 1..reference.len() {
-        let length = reference[m].distance(reference[m - 1]);
+        let length = lengths[m];
         let drawn = reference[m] + offsets[m];
         let along = (drawn - previous)
             .try_normalize()
