@@ -107,9 +107,12 @@ pub(crate) fn set_up(
     // Most frames no jellyfish changes path or resolution: those that do are looked for
     // side by side (ten thousand, a resolution worked out for each, were a serial stretch
     // of the frame), then moved in entity order.
+    // Boxed: `for_each_init` hands a batch's state through every item by value, and the
+    // resolution memo was copied in and out for each of ten thousand jellyfish.
     jellyfish.par_iter().for_each_init(
-        || (moving.borrow_local_mut(), Resolutions::default()),
-        |(list, resolutions), (entity, slice, meshes, material)| {
+        || Box::new((moving.borrow_local_mut(), Resolutions::default())),
+        |state, (entity, slice, meshes, material)| {
+            let (list, resolutions) = &mut **state;
             if !slice.started() {
                 return;
             }
