@@ -4,11 +4,11 @@
 //! One-way: they read the water and never push it, so the swimming the bell is calibrated
 //! for is exactly the same with or without them (a test holds it bit for bit). Each side of
 //! the slice has one chain of [`POINTS`] points a fixed distance apart. A step carries every
-//! point with the water around it (an arm is neutrally buoyant and light: no inertia of its
-//! own), bends it back towards hanging at rest (over [`MANUBRIUM_RELAXATION`] along the
-//! stiffer manubrium, over [`ARM_RELAXATION`] along the limp arms), then restores each
-//! segment's length
-//! from the root down (follow-the-leader). Unconditionally stable and deterministic. The
+//! point with the water around it, as a tracer ([`Fluid::tracer_velocity`]: an arm is
+//! neutrally buoyant and light, no inertia of its own), bends it back towards hanging at
+//! rest (over [`MANUBRIUM_RELAXATION`] along the stiffer manubrium, over [`ARM_RELAXATION`]
+//! along the limp arms), then restores each segment's length from the root down
+//! (follow-the-leader). Unconditionally stable and deterministic. The
 //! renderer sweeps the pair of chains around the axis, like the tentacles.
 
 use super::fluid::Fluid;
