@@ -183,26 +183,28 @@ pub const MAX_MESH_VERTICES: usize = 50_000;
 pub const MAX_COST_PER_SECOND: f64 = 0.5;
 
 /// Cost of one step on the reference machine: per fluid cell (semi-Lagrangian), per cell
-/// and diffusion sweep, and per body point. Fitted 2026-12-03 (`numerics -- fingerprint`,
-/// which prints each run's cost beside this estimate) over 120 runs: every shipped species
-/// and the paper's model, both geometries, the three advection schemes, grids 40 to 160,
-/// the least of two runs each, on the relative error, then raised by half so that every
-/// run costs no more than its estimate (at most 0.83 of it, the shipped species 0.51–0.74)
-/// but the paper's r–z dome on fine grids, whose fast flow splits its steps (up to 1.09).
-/// The fit before (2026-11-27) had costed a cell four times what the exact solves and the
-/// passes eight lanes wide leave of it, and a body point a third.
-const COST_PER_CELL: f64 = 6.9e-9;
-const COST_PER_CELL_SWEEP: f64 = 4e-9;
-const COST_PER_POINT: f64 = 0.76e-6;
+/// and diffusion sweep, and per body point. Fitted 2026-12-05 by `examples/cost_fit.rs`
+/// (which prints every run's cost beside this estimate) over 216 runs: every shipped
+/// species and the paper's model, and the moon jelly in water ten and a hundred times as
+/// viscous (more sweeps a step), in both geometries, with the three advection schemes, on
+/// grids 40 to 160, the least of three runs each, on the relative error; then raised by
+/// half, so that every run costs no more than its estimate (at most 0.82 of it, the
+/// shipped species at their own grids 0.63–0.75) but the paper's r–z dome on fine grids,
+/// whose fast flow splits its steps (up to 1.14). The fit before (2026-12-03) had costed a
+/// cell and a body point half again as much as the slice's passes since leave of them,
+/// and a sweep five times: the shipped species cost 0.37–0.45 of it.
+const COST_PER_CELL: f64 = 5.1e-9;
+const COST_PER_CELL_SWEEP: f64 = 1.2e-9;
+const COST_PER_POINT: f64 = 0.42e-6;
 
 /// What a cell costs with an advection scheme against the semi-Lagrangian step, from the
-/// same fit: MacCormack's two traces and its limiter 3.4 times, the bicubic trace (eight
-/// lanes wide, `fluid::window`) 2.05 times.
+/// same fit: MacCormack's two traces and its limiter 3.7 times, the bicubic trace (eight
+/// lanes wide, `fluid::window`) 1.85 times.
 fn advection_cost(advection: Advection) -> f64 {
     match advection {
         Advection::SemiLagrangian => 1.0,
-        Advection::MacCormack => 3.4,
-        Advection::Cubic => 2.05,
+        Advection::MacCormack => 3.7,
+        Advection::Cubic => 1.85,
     }
 }
 

@@ -323,13 +323,13 @@ fn the_cost_model_counts_the_advection_scheme() {
         );
     }
     // Where the cells are most of the cost, near the measured ratios of a cell's step
-    // (2.05 and 3.4; the sweeps and points, which no scheme changes, dilute them).
+    // (1.85 and 3.7; the sweeps and points, which no scheme changes, dilute them).
     let (plain, _) = with(Advection::SemiLagrangian, 192);
     let (maccormack, _) = with(Advection::MacCormack, 192);
     let (cubic, s) = with(Advection::Cubic, 192);
-    assert!((1.7..2.05).contains(&(cubic / plain)), "{}", cubic / plain);
+    assert!((1.6..1.85).contains(&(cubic / plain)), "{}", cubic / plain);
     assert!(
-        (2.5..3.4).contains(&(maccormack / plain)),
+        (3.0..3.7).contains(&(maccormack / plain)),
         "{}",
         maccormack / plain
     );
