@@ -59,12 +59,10 @@ pub(super) fn step_slices(
     let water = water.as_deref().unwrap_or(&still);
     // Boxed: `for_each_init` hands a batch's state through every item by value.
     let batch = || Box::new(BatchClock::new(&timings, Spent::Simulation));
-    // The item by reference: moved into the timed closure, its ~190 bytes of query
-    // references were copied for every jellyfish.
-    let step = |batch: &mut Box<BatchClock>, mut item: StepItem| {
+    let step = |batch: &mut Box<BatchClock>, item: StepItem| {
         let tier = item.1.tier as usize;
         batch.time(tier, || {
-            step_one(&mut item, &at, water, &events);
+            step_one(item, &at, water, &events);
         });
     };
     // The costly live slices first, then the rest (the far replays, and any jellyfish not
@@ -92,7 +90,7 @@ struct FrameTime {
 /// One jellyfish's frame: its slice built if it was left pending, the steps the frame
 /// pays for, and the time it shows.
 fn step_one(
-    (entity, slice, history, motion, guides, transform, steering, resting): &mut StepItem,
+    (entity, mut slice, mut history, mut motion, mut guides, transform, steering, resting): StepItem,
     at: &FrameTime,
     water: &AmbientWater,
     events: &LifecycleQueue,
@@ -103,13 +101,13 @@ fn step_one(
         elapsed,
         before,
     } = *at;
-    let slice = &mut **slice;
+    let slice = &mut *slice;
     // A species edit left for the live slice this frame is taken here, on every thread.
     if slice.edit.waiting() {
-        slice.take_edit(history, motion);
+        slice.take_edit(&mut history, &mut motion);
     }
     // Started this frame and left near: its slice is built now.
-    if let Err(error) = slice.build_pending(history, motion.pose) {
+    if let Err(error) = slice.build_pending(&mut history, motion.pose) {
         error!("jellyfish {entity}: its slice could not be built: {error}");
     }
     let Some(clock) = slice.clock() else {
@@ -122,19 +120,19 @@ fn step_one(
             scale: transform.scale,
             water,
             now,
-            steering: *steering,
+            steering,
         };
         let step = Step {
-            entity: *entity,
+            entity,
             until,
             frame,
-            resting: *resting,
+            resting,
             travel: &travel,
             events,
         };
-        step.advance(slice, history, motion, guides.as_deref_mut());
+        step.advance(slice, &mut history, &mut motion, guides.as_deref_mut());
     }
-    slice.show(history);
+    slice.show(&mut history);
     slice.fresh = false;
 }
 
