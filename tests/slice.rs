@@ -43,6 +43,23 @@ fn calibrated_in(geometry: SliceGeometry) -> Vec<Species> {
     all
 }
 
+/// [`calibrated_in`], each also grown to twice and shrunk to half its diameter
+/// (`Species::resized`: every length, and the pulse rate its animal's at the size).
+fn calibrated_at_three_sizes(geometry: SliceGeometry) -> Vec<Species> {
+    calibrated_in(geometry)
+        .into_iter()
+        .flat_map(|s| {
+            let d = s.diameter;
+            [s.resized(0.5 * d), s.clone(), s.resized(2.0 * d)]
+        })
+        .collect()
+}
+
+/// A species' name and its diameter in millimetres, as "Sarsia 8 mm".
+fn sized(s: &Species) -> String {
+    format!("{} {:.0} mm", s.name, 1000.0 * s.diameter)
+}
+
 /// The paper's Fig. 12 moon jelly in `geometry`: its findings are checked on it.
 fn paper(geometry: SliceGeometry) -> Species {
     Species {
@@ -591,10 +608,11 @@ fn the_paper_model_swims_and_staggering_pays(geometry: SliceGeometry) {
 }
 
 in_both_geometries!(#[ignore = "long: every species, 4 grids × 30 strokes"] fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell);
-/// Every species calibrated in the geometry: grids G..G+3 put the bell at four offsets to
-/// the cells, and its stroke may not tell them apart by more than 5%.
+/// Every species calibrated in the geometry, at its size and at half and twice it: grids
+/// G..G+3 put the bell at four offsets to the cells, and its stroke may not tell them apart
+/// by more than 5%.
 fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell(geometry: SliceGeometry) {
-    for base in calibrated_in(geometry) {
+    for base in calibrated_at_three_sizes(geometry) {
         let runs: Vec<f32> = (0..4)
             .map(|k| {
                 let s = Species {
@@ -604,18 +622,20 @@ fn the_stroke_does_not_depend_on_where_the_bell_sits_in_a_cell(geometry: SliceGe
                 mean_and_cv(&per_cycle(&s, 10, 30)).0
             })
             .collect();
+        let name = sized(&base);
         println!(
-            "{}: grids G..G+3, diameters per cycle (cycles 10-30): {runs:?}, spread {:.1}%",
-            base.name,
+            "{name}: grids G..G+3, diameters per cycle (cycles 10-30): {runs:?}, spread {:.1}%",
             100.0 * spread(&runs)
         );
-        assert!(spread(&runs) <= 0.05, "{}: {runs:?}", base.name);
+        assert!(spread(&runs) <= 0.05, "{name}: {runs:?}");
     }
 }
 
-in_both_geometries!(#[ignore = "long: every species, grids G and 1.5·G, 30 strokes"] fn the_stroke_converges_with_the_grid);
+in_both_geometries!(#[ignore = "long: every species at three sizes, grids G and 1.5·G, 30 strokes"] fn the_stroke_converges_with_the_grid);
+/// Every species calibrated in the geometry, at its size and at half and twice it: its
+/// stroke on a grid half as fine again is within 15%.
 fn the_stroke_converges_with_the_grid(geometry: SliceGeometry) {
-    for base in calibrated_in(geometry) {
+    for base in calibrated_at_three_sizes(geometry) {
         let at = |grid: u32| {
             let s = Species {
                 grid_resolution: grid,
@@ -624,15 +644,14 @@ fn the_stroke_converges_with_the_grid(geometry: SliceGeometry) {
             mean_and_cv(&per_cycle(&s, 10, 30)).0
         };
         let (coarse, fine) = (at(base.grid_resolution), at(base.grid_resolution * 3 / 2));
+        let name = sized(&base);
         println!(
-            "{}: grid G: {coarse:.3}, 1.5·G: {fine:.3} diameters per cycle ({:+.1}%)",
-            base.name,
+            "{name}: grid G: {coarse:.3}, 1.5·G: {fine:.3} diameters per cycle ({:+.1}%)",
             100.0 * (fine / coarse - 1.0)
         );
         assert!(
             (fine / coarse - 1.0).abs() <= 0.15,
-            "{}: {coarse} vs {fine}",
-            base.name
+            "{name}: {coarse} vs {fine}"
         );
     }
 }
