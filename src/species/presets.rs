@@ -55,6 +55,14 @@ impl Species {
             contraction_frequency: 0.7,
             contraction_duty: 0.28,
             relaxation_span: 0.5,
+            // The band nearest the margin lets go later and more slowly than the rest, 0.7
+            // as much later as the paper's stagger: the least change from it that has the
+            // margin back to its width when the next stroke begins, as the record's is
+            // (0.99 at phase 0.97; the paper's stagger held it at 0.89). Through the whole
+            // stroke it fits the record's margin and outline better too (rms 0.079 and
+            // 0.059 of the diameter against 0.100 and 0.074; at 15.5 cm 0.099 and 0.074
+            // against 0.118 and 0.084; `docs/physics.md` section 5).
+            expansion_stagger: 0.7,
             // Those are the muscle's twitch: 0.40 s to contract and 0.51 s to let go at
             // 40 mm, whatever the rate it is made to beat at. Beaten faster than they fit,
             // the muscle fires again before it has let go.
@@ -242,6 +250,11 @@ impl Species {
             natural_diameter: 0.06,
             contraction_duty: 0.28,
             contraction_ratio: 0.56,
+            // The paper's staggered release, the moon jelly's before its refill was fitted
+            // to its record: with the moon jelly's 0.7 this flat bell is drawn back while it
+            // refills at 30 mm (−0.014 D/s), and no record of *Aequorea*'s refill was in
+            // reach to choose between them.
+            expansion_stagger: 1.0,
             // A hundred long, fine tentacles, three quarters of the bell long: chosen.
             // Slender cylinders: along its length the fringe drags by skin friction.
             tentacle_count: 100,
