@@ -257,7 +257,10 @@ fn reset_restores_the_preset() {
         assert_eq!(editor.draft(), assets.get(&h).unwrap());
     });
     frames(&mut app, 2);
-    assert_eq!(simulated(&app, e).expansion_stagger, 1.0);
+    assert_eq!(
+        simulated(&app, e).expansion_stagger,
+        Species::aurelia().expansion_stagger
+    );
 }
 
 fn scratch_file(name: &str) -> PathBuf {
