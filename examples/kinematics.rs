@@ -9,7 +9,8 @@
 //! at rest as a video measures it) and height, and the
 //! subumbrella's depth over its width (the cavity alone, as `SliceSim::bell_points` gives
 //! it); then each shipped species at other sizes, every length scaled and the pulse rate
-//! set to the animal's at that size, with its refill's slowest speed too. Writes
+//! set to the animal's at that size, with its refill's slowest speed too; then how far the
+//! moon jelly's stroke stays from the record's (root mean square). Writes
 //! `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
 //! `cargo run --release --no-default-features --example kinematics -- [--strokes 20 (at least 3)] [--out docs] [--finer N] [--set field=value …]`
@@ -199,6 +200,40 @@ fn record(path: &Path) -> Vec<(f32, f32, f32, f32)> {
         .collect()
 }
 
+/// `record` at `phase`, linear between its samples: `pick` chooses the column.
+fn recorded_at(
+    rec: &[(f32, f32, f32, f32)],
+    phase: f32,
+    pick: fn(&(f32, f32, f32, f32)) -> f32,
+) -> f32 {
+    let after = rec
+        .iter()
+        .position(|r| r.0 >= phase)
+        .unwrap_or(rec.len() - 1);
+    if after == 0 {
+        return pick(&rec[0]);
+    }
+    let (a, b) = (&rec[after - 1], &rec[after]);
+    let t = ((phase - a.0) / (b.0 - a.0).max(1e-6)).clamp(0.0, 1.0);
+    pick(a) + t * (pick(b) - pick(a))
+}
+
+/// The root-mean-square distance over stroke `k` of the model's `model` from the record's
+/// `recorded`, sample by sample at the model's phases.
+fn rms_from_record(
+    samples: &[Sample],
+    k: u32,
+    rec: &[(f32, f32, f32, f32)],
+    model: fn(&Sample) -> f32,
+    recorded: fn(&(f32, f32, f32, f32)) -> f32,
+) -> f32 {
+    let (sum, n) = cycle(samples, k).fold((0.0f32, 0u32), |(sum, n), (phase, x)| {
+        let d = model(x) - recorded_at(rec, phase, recorded);
+        (sum + d * d, n + 1)
+    });
+    (sum / n.max(1) as f32).sqrt()
+}
+
 const COLORS: [[u8; 3]; 5] = [
     [31, 119, 180],
     [44, 160, 44],
@@ -295,6 +330,20 @@ fn main() {
         .expect("the moon jelly is shipped")
         .1;
     let recorded_size = &resized_runs[sizes.len() - 1];
+    println!(
+        "\nThe moon jelly's stroke {under_way} against the record, root-mean-square over the stroke (over the rest diameter; the outline over its own widest at rest):\n\n| | margin | outline | height |\n|---|---|---|---|"
+    );
+    for (label, samples) in [("40 mm", moon), ("scaled to 155 mm", &recorded_size.1)] {
+        let rms = |model: fn(&Sample) -> f32, recorded: fn(&(f32, f32, f32, f32)) -> f32| {
+            rms_from_record(samples, under_way, &rec, model, recorded)
+        };
+        println!(
+            "| {label} | {:.3} | {:.3} | {:.3} |",
+            rms(|x| x.margin, |r| r.1),
+            rms(|x| x.widest, |r| r.2),
+            rms(|x| x.height, |r| r.3),
+        );
+    }
     let under = |samples: &[Sample], f: fn(&Sample) -> f32| -> Vec<(f32, f32)> {
         cycle(samples, under_way).map(|(p, x)| (p, f(x))).collect()
     };
