@@ -4,7 +4,8 @@
 //!
 //! The water steps on the app's fixed ticks, once every [`TankWater::ticks_per_step`] of
 //! them by their time together, and takes the jets gathered in the tick before, in entity
-//! order, so a replay is the same water. The game's own stirs
+//! order, so a replay is the same water. A step's work is split over its tick and the
+//! next (about half on each), so that no frame carries a whole step and the next none. The game's own stirs
 //! ([`TankWater::stir`]) also disturb the jellyfish near them ([`Disturbance`]); their
 //! own jets do not.
 
@@ -62,7 +63,8 @@ pub struct TankWater {
     /// unit a second in cells of 0.75, in about fifty), and the stable-fluids step holds
     /// at any length: stepped at 32 a second instead of 64 the water is the same to within
     /// a percent of its speed, and at 10,002 jellyfish a step and its jets cost about a
-    /// tenth of the frame. Default 2.
+    /// tenth of the frame. Default 2. Above one, a step begun on its tick is finished on
+    /// the next, and the jellyfish swim in it from then ([`TankFluid::begin_step`]).
     pub ticks_per_step: u32,
     #[reflect(ignore)]
     fluid: TankFluid,
@@ -142,35 +144,47 @@ impl TankWater {
 }
 
 /// Steps the tank, on every [`TankWater::ticks_per_step`]th fixed tick by the ticks' time
-/// together, and hands it to the jellyfish as their water. The jets' pushes, most of a
-/// crowded tank's step, are applied in slabs side by side: the same water, bit for bit, on
-/// any number of threads.
+/// together, and hands it to the jellyfish as their water. Above one tick a step, the
+/// step's work is split: begun on its tick (the jets' pushes, the advection, the
+/// pressure's first sweeps) and finished on the next (its last sweeps), then handed on;
+/// the same water, bit for bit, as a step taken at once, a tick later. The jets' pushes,
+/// most of a crowded tank's step, are applied in slabs side by side: the same water on any
+/// number of threads.
 fn step_tank(
     mut tank: ResMut<TankWater>,
     mut ambient: ResMut<AmbientWater>,
     time: Res<Time<Fixed>>,
     timings: Res<JellyfishTimings>,
 ) {
+    let start = std::time::Instant::now();
+    if tank.step_in_flight() {
+        tank.finish_step();
+        *ambient = AmbientWater::field(tank.snapshot());
+    }
     tank.ticks += 1;
     tank.held += time.delta();
     if tank.ticks < tank.ticks_per_step.max(1) {
+        timings.add_water(start.elapsed());
         return;
     }
     let dt = tank.held.as_secs_f32();
     (tank.ticks, tank.held) = (0, std::time::Duration::ZERO);
     if dt.is_nan() || dt <= 0.0 {
+        timings.add_water(start.elapsed());
         return;
     }
-    let start = std::time::Instant::now();
     let pool = ComputeTaskPool::get();
-    let slabs = tank.push_slabs(pool.thread_num());
+    let slabs = tank.begin_step(pool.thread_num());
     pool.scope(|scope| {
         for slab in slabs {
             scope.spawn(async move { slab.apply() });
         }
     });
-    tank.step_pushed(dt);
-    *ambient = AmbientWater::field(tank.snapshot());
+    tank.advance_pushed(dt);
+    if tank.ticks_per_step <= 1 {
+        tank.finish_step();
+        *ambient = AmbientWater::field(tank.snapshot());
+    }
     timings.add_water(start.elapsed());
 }
 

@@ -6,7 +6,10 @@
 //! (Gauss–Seidel on the pressure, closed free-slip walls). Pushes are applied in the order
 //! they came, so the same pushes give the same water; a crowded tank's pushes can be
 //! applied in slabs side by side ([`TankFluid::push_slabs`], `pushes`), to the same bits; the
-//! pressure's sweeps are in `relax`.
+//! pressure's sweeps are in `relax`. A caller that steps the water every few frames can
+//! split a step's work over two calls ([`TankFluid::begin_step`],
+//! [`TankFluid::advance_pushed`], [`TankFluid::finish_step`]), to the same bits, the water
+//! before it seen from outside until it is done.
 
 mod pushes;
 mod relax;
@@ -16,7 +19,15 @@ pub use pushes::PushSlab;
 use super::trilinear::Trilinear;
 use glam::{UVec3, Vec3};
 use pushes::Impulse;
-use relax::{for_each_cell, relax};
+use relax::{PRESSURE_SWEEPS, SWEEPS_IN_FLIGHT, for_each_cell, relax_sweeps};
+
+/// Of a step split over two calls, the pressure's sweeps taken in the first: with the
+/// pushes and the advection there, about half a quiet step's work in each (the aquarium's
+/// tank with 18 jellyfish: 0.21 and 0.16 ms; with ten thousand, whose jets' pushes are
+/// most of the first, 0.6 and 0.18). Whole flights, so the split changes no bit.
+const FIRST_SWEEPS: usize = 8;
+const _: () =
+    assert!(FIRST_SWEEPS.is_multiple_of(SWEEPS_IN_FLIGHT) && FIRST_SWEEPS <= PRESSURE_SWEEPS);
 
 /// The tank's water: velocities at cell centres of a box.
 #[derive(Clone, Debug, Default)]
@@ -34,6 +45,24 @@ pub struct TankFluid {
     pressure: Vec<f32>,
     divergence: Vec<f32>,
     pending: Vec<Impulse>,
+    /// Where a step split over two calls stands ([`TankFluid::begin_step`]).
+    split: Split,
+    /// The water before the step in flight: what is seen from outside until it is done.
+    before: Vec<Vec3>,
+}
+
+/// How far a step split over two calls has come.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Split {
+    /// None in flight: the water is as it stands.
+    #[default]
+    Idle,
+    /// Begun: the pushes are being applied; nothing else is done yet.
+    Pushing,
+    /// Advected and part relaxed: the pressure's last sweeps are left.
+    Relaxing,
+    /// Begun with a step of no length: only the pushes were applied.
+    Pushed,
 }
 
 impl TankFluid {
@@ -52,6 +81,8 @@ impl TankFluid {
             pressure: vec![0.0; count],
             divergence: vec![0.0; count],
             pending: Vec::new(),
+            split: Split::Idle,
+            before: Vec::new(),
         }
     }
 
@@ -77,19 +108,73 @@ impl TankFluid {
     }
 
     /// The velocity of every cell, x fastest, then y, then z; cell (i, j, k) is centred at
-    /// `min + ((i, j, k) + 0.5) · cell`.
+    /// `min + ((i, j, k) + 0.5) · cell`. While a split step is in flight, the water before
+    /// it.
     pub fn velocities(&self) -> &[Vec3] {
-        &self.velocity
+        if self.split == Split::Idle {
+            &self.velocity
+        } else {
+            &self.before
+        }
     }
 
     /// The water's velocity at a point (trilinear; held at the walls).
     pub fn velocity_at(&self, point: Vec3) -> Vec3 {
-        self.grid().sample(&self.velocity, point)
+        self.grid().sample(self.velocities(), point)
     }
 
     /// Largest speed in the tank.
     pub fn speed_max(&self) -> f32 {
-        self.velocity.iter().map(|v| v.length()).fold(0.0, f32::max)
+        self.velocities()
+            .iter()
+            .map(|v| v.length())
+            .fold(0.0, f32::max)
+    }
+
+    /// Whether a step split over two calls is in flight ([`TankFluid::begin_step`]).
+    pub fn step_in_flight(&self) -> bool {
+        self.split != Split::Idle
+    }
+
+    /// Begins a step to be split over two calls: the water as it stands is what is seen
+    /// from outside until [`TankFluid::finish_step`], and the pending pushes are cut into
+    /// slabs to apply ([`TankFluid::push_slabs`]) before [`TankFluid::advance_pushed`]. A
+    /// step still in flight is finished first.
+    pub fn begin_step(&mut self, parts: usize) -> Vec<PushSlab<'_>> {
+        self.finish_step();
+        self.before.clone_from(&self.velocity);
+        self.split = Split::Pushing;
+        self.push_slabs(parts)
+    }
+
+    /// The first part of a step begun ([`TankFluid::begin_step`]) whose pushes were
+    /// applied: advection, rest, and the pressure's first sweeps. Outside a split step,
+    /// the whole step ([`TankFluid::step_pushed`]).
+    pub fn advance_pushed(&mut self, dt: f32) {
+        if self.split != Split::Pushing {
+            self.step_pushed(dt);
+            return;
+        }
+        self.pending.clear();
+        if dt.is_nan() || dt <= 0.0 {
+            self.split = Split::Pushed;
+            return;
+        }
+        self.advect(dt);
+        self.come_to_rest(dt);
+        self.walls();
+        self.begin_projection();
+        self.split = Split::Relaxing;
+    }
+
+    /// The rest of a split step: the pressure's last sweeps and its gradient taken out.
+    /// The stepped water is then what is seen from outside. Nothing when none is in
+    /// flight.
+    pub fn finish_step(&mut self) {
+        if self.split == Split::Relaxing {
+            self.finish_projection();
+        }
+        self.split = Split::Idle;
     }
 
     /// One step of `dt` seconds: pushes, advection, rest, projection.
@@ -97,6 +182,7 @@ impl TankFluid {
         if dt.is_nan() || dt <= 0.0 {
             return;
         }
+        self.finish_step();
         self.push();
         self.step_pushed(dt);
     }
@@ -110,8 +196,9 @@ impl TankFluid {
     }
 
     /// The rest of a step whose pushes [`TankFluid::push_slabs`] applied: advection,
-    /// rest, projection.
+    /// rest, projection. (A split step in flight is finished first.)
     pub fn step_pushed(&mut self, dt: f32) {
+        self.finish_step();
         self.pending.clear();
         if dt.is_nan() || dt <= 0.0 {
             return;
@@ -119,7 +206,8 @@ impl TankFluid {
         self.advect(dt);
         self.come_to_rest(dt);
         self.walls();
-        self.project();
+        self.begin_projection();
+        self.finish_projection();
     }
 
     fn advect(&mut self, dt: f32) {
@@ -174,12 +262,26 @@ impl TankFluid {
         });
     }
 
-    /// Removes the divergent part: solves for the pressure and subtracts its gradient.
-    fn project(&mut self) {
+    /// The projection's first part: the divergence, and the pressure's first sweeps.
+    fn begin_projection(&mut self) {
         let h = self.cell;
         self.measure_divergence();
         self.pressure.iter_mut().for_each(|p| *p = 0.0);
-        relax(&mut self.pressure, &self.divergence, self.size, h * h);
+        relax_sweeps(
+            &mut self.pressure,
+            &self.divergence,
+            self.size,
+            h * h,
+            FIRST_SWEEPS,
+        );
+    }
+
+    /// The projection's rest: the pressure's last sweeps, and its gradient subtracted.
+    /// With [`TankFluid::begin_projection`], the divergent part removed.
+    fn finish_projection(&mut self) {
+        let h = self.cell;
+        let rest = PRESSURE_SWEEPS - FIRST_SWEEPS;
+        relax_sweeps(&mut self.pressure, &self.divergence, self.size, h * h, rest);
         let (p, v) = (&self.pressure, &mut self.velocity);
         for_each_cell(self.size, |idx, near| {
             let here = p[idx];
@@ -205,6 +307,61 @@ mod tests {
             state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             (state >> 8) as f32 / (1 << 24) as f32
         }
+    }
+
+    /// A step split over two calls is the step taken at once, to the bit, and until it is
+    /// done the water seen from outside is the water before it.
+    #[test]
+    fn a_step_split_in_two_is_the_step_at_once() {
+        let stirred = || {
+            let mut t = tank();
+            t.stir(Vec3::new(0.5, 3.0, -0.5), 1.5, Vec3::new(1.0, 0.5, 0.0));
+            t.step(1.0 / 32.0);
+            t.stir(Vec3::new(-1.5, 5.0, 1.0), 1.0, Vec3::new(0.0, -0.8, 0.6));
+            t
+        };
+        let bits = |v: &[Vec3]| {
+            v.iter()
+                .map(|v| v.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        let (mut whole, mut split) = (stirred(), stirred());
+        whole.step(1.0 / 32.0);
+        let before = bits(split.velocities());
+        split.begin_step(3).into_iter().for_each(PushSlab::apply);
+        assert!(split.step_in_flight());
+        assert_eq!(bits(split.velocities()), before, "pushed, seen as before");
+        split.advance_pushed(1.0 / 32.0);
+        assert_eq!(
+            bits(split.velocities()),
+            before,
+            "half stepped, seen as before"
+        );
+        assert_eq!(
+            split.velocity_at(Vec3::new(0.5, 3.0, -0.5)),
+            stirred().velocity_at(Vec3::new(0.5, 3.0, -0.5))
+        );
+        split.finish_step();
+        assert!(!split.step_in_flight());
+        assert_eq!(
+            bits(split.velocities()),
+            bits(whole.velocities()),
+            "finished"
+        );
+        assert_ne!(bits(split.velocities()), before);
+        // Begun again and left in flight, a whole step finishes it first.
+        split.stir(Vec3::new(1.0, 2.0, 1.0), 1.0, Vec3::X);
+        whole.stir(Vec3::new(1.0, 2.0, 1.0), 1.0, Vec3::X);
+        split.begin_step(2).into_iter().for_each(PushSlab::apply);
+        split.advance_pushed(1.0 / 32.0);
+        split.step(1.0 / 32.0);
+        whole.step(1.0 / 32.0);
+        whole.step(1.0 / 32.0);
+        assert_eq!(
+            bits(split.velocities()),
+            bits(whole.velocities()),
+            "in flight, then whole"
+        );
     }
 
     #[test]
@@ -293,7 +450,8 @@ mod tests {
         t.push();
         t.walls();
         let before = divergence_rms(&mut t);
-        t.project();
+        t.begin_projection();
+        t.finish_projection();
         let after = divergence_rms(&mut t);
         println!("rms divergence of a stir {before:.3} 1/s, projected {after:.3} 1/s");
         assert!(before > 0.02, "a stir is divergent: {before}");

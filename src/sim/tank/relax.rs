@@ -12,7 +12,9 @@ pub(super) const PRESSURE_SWEEPS: usize = 20;
 /// time instead, each a plane behind the one before and stepped cell by cell with it, so
 /// the processor works on several chains at once. Every cell still sees its neighbours as
 /// one sweep after another leaves them: the same pressure, bit for bit.
-pub(super) fn relax(p: &mut [f32], div: &[f32], size: UVec3, h2: f32) {
+/// `sweeps` of them (a step takes [`PRESSURE_SWEEPS`], perhaps in two calls: two calls
+/// whose first takes a whole number of flights are one call of both counts, bit for bit).
+pub(super) fn relax_sweeps(p: &mut [f32], div: &[f32], size: UVec3, h2: f32, sweeps: usize) {
     let [sx, sy, sz] = [size.x, size.y, size.z].map(|n| n as usize);
     let (dy, dz) = (sx, sx * sy);
     let cell = |p: &mut [f32], i: usize, j: usize, k: usize| {
@@ -29,8 +31,8 @@ pub(super) fn relax(p: &mut [f32], div: &[f32], size: UVec3, h2: f32) {
         p[idx] = (l + r + d + u + b + f - h2 * div[idx]) / 6.0;
     };
     let mut done = 0;
-    while done < PRESSURE_SWEEPS {
-        let flight = SWEEPS_IN_FLIGHT.min(PRESSURE_SWEEPS - done);
+    while done < sweeps {
+        let flight = SWEEPS_IN_FLIGHT.min(sweeps - done);
         // Sweep q of the flight is at plane `t - q`: the earlier sweeps lead, and at each
         // cell of a row go first, so a later one reads what they left.
         for t in 0..sz + flight - 1 {
@@ -52,8 +54,8 @@ pub(super) fn relax(p: &mut [f32], div: &[f32], size: UVec3, h2: f32) {
     }
 }
 
-/// Pressure sweeps [`relax`] runs side by side.
-const SWEEPS_IN_FLIGHT: usize = 4;
+/// Pressure sweeps [`relax_sweeps`] runs side by side.
+pub(super) const SWEEPS_IN_FLIGHT: usize = 4;
 
 /// Visits every cell of a grid of `size` in memory order with its index and its six
 /// neighbours' (−x, +x, −y, +y, −z, +z; none past a wall). Inside, the neighbours are
@@ -119,7 +121,17 @@ mod tests {
             let div: Vec<f32> = (0..n).map(|c| ((c * 7919) % 23) as f32 - 11.0).collect();
             let h2 = 0.75f32 * 0.75;
             let mut flight = vec![0.0; n];
-            relax(&mut flight, &div, size, h2);
+            relax_sweeps(&mut flight, &div, size, h2, PRESSURE_SWEEPS);
+            // The same sweeps in two calls, the first of whole flights.
+            let mut split = vec![0.0; n];
+            relax_sweeps(&mut split, &div, size, h2, 2 * SWEEPS_IN_FLIGHT);
+            relax_sweeps(
+                &mut split,
+                &div,
+                size,
+                h2,
+                PRESSURE_SWEEPS - 2 * SWEEPS_IN_FLIGHT,
+            );
             let mut one = vec![0.0f32; n];
             for _ in 0..PRESSURE_SWEEPS {
                 for_each_cell(size, |idx, near| {
@@ -131,6 +143,7 @@ mod tests {
             assert!(one.iter().any(|p| *p != 0.0));
             let bits = |p: &[f32]| p.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&flight), bits(&one), "grid {size}");
+            assert_eq!(bits(&split), bits(&one), "grid {size}, in two calls");
         }
     }
 }
