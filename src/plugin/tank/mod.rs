@@ -5,9 +5,9 @@
 //! The water steps on the app's fixed ticks, once every [`TankWater::ticks_per_step`] of
 //! them by their time together, and takes the jets gathered in the tick before, in entity
 //! order, so a replay is the same water. A step's work is split over its tick and the
-//! next (about half on each), so that no frame carries a whole step and the next none. The game's own stirs
-//! ([`TankWater::stir`]) also disturb the jellyfish near them ([`Disturbance`]); their
-//! own jets do not.
+//! next (about half on each), so that no frame carries a whole step and the next none.
+//! The game's own stirs ([`TankWater::stir`]) also disturb the jellyfish near them
+//! ([`Disturbance`]); their own jets do not.
 
 use super::schedule::JellyfishSystems;
 use super::slice::JellyfishSlice;
@@ -126,6 +126,19 @@ impl TankWater {
         });
     }
 
+    /// Counts a fixed tick of `delta`: on every [`TankWater::ticks_per_step`]th, the
+    /// length of the step then due, s (none for a step of no length).
+    fn count_tick(&mut self, delta: std::time::Duration) -> Option<f32> {
+        self.ticks += 1;
+        self.held += delta;
+        if self.ticks < self.ticks_per_step.max(1) {
+            return None;
+        }
+        let dt = self.held.as_secs_f32();
+        (self.ticks, self.held) = (0, std::time::Duration::ZERO);
+        (dt > 0.0).then_some(dt)
+    }
+
     /// Whether the tick now ending is the last before the water's next step, whose jets
     /// that step takes.
     fn steps_next_tick(&self) -> bool {
@@ -158,34 +171,28 @@ fn step_tank(
 ) {
     let start = std::time::Instant::now();
     if tank.step_in_flight() {
-        tank.finish_step();
-        *ambient = AmbientWater::field(tank.snapshot());
+        hand_on(&mut tank, &mut ambient);
     }
-    tank.ticks += 1;
-    tank.held += time.delta();
-    if tank.ticks < tank.ticks_per_step.max(1) {
-        timings.add_water(start.elapsed());
-        return;
-    }
-    let dt = tank.held.as_secs_f32();
-    (tank.ticks, tank.held) = (0, std::time::Duration::ZERO);
-    if dt.is_nan() || dt <= 0.0 {
-        timings.add_water(start.elapsed());
-        return;
-    }
-    let pool = ComputeTaskPool::get();
-    let slabs = tank.begin_step(pool.thread_num());
-    pool.scope(|scope| {
-        for slab in slabs {
-            scope.spawn(async move { slab.apply() });
+    if let Some(dt) = tank.count_tick(time.delta()) {
+        let pool = ComputeTaskPool::get();
+        let slabs = tank.begin_step(pool.thread_num());
+        pool.scope(|scope| {
+            for slab in slabs {
+                scope.spawn(async move { slab.apply() });
+            }
+        });
+        tank.advance_pushed(dt);
+        if tank.ticks_per_step <= 1 {
+            hand_on(&mut tank, &mut ambient);
         }
-    });
-    tank.advance_pushed(dt);
-    if tank.ticks_per_step <= 1 {
-        tank.finish_step();
-        *ambient = AmbientWater::field(tank.snapshot());
     }
     timings.add_water(start.elapsed());
+}
+
+/// Finishes the step in flight and hands the water to the jellyfish.
+fn hand_on(tank: &mut TankWater, ambient: &mut AmbientWater) {
+    tank.finish_step();
+    *ambient = AmbientWater::field(tank.snapshot());
 }
 
 /// Each jellyfish's jet pushes the tank's water behind it: a blob a bell across, a bell
