@@ -340,13 +340,17 @@ impl Species {
             margin_thickness_ratio: 0.4,
             // Pulse rate and the depth and timing of the stroke are not from a record (the
             // published kinematics were out of reach): a jetter's quick, deep strokes.
-            // The muscle lets go over the whole refill: a jetter glides forwards while it
-            // refills (Colin & Costello 2002), and letting go over half of it drew the
-            // bell back at 0.01 D/s. Outcomes in `examples/kinematics.rs`.
+            // The muscle lets go over three quarters of the refill, the band nearest the
+            // margin later (the paper's stagger), and the bell glides forwards while it
+            // refills, as a jetter does (Colin & Costello 2002). Over the whole refill
+            // (chosen until 2026-12-05) every band let go alike and the stagger did
+            // nothing; over the paper's half, beaten at half its rate the bell is drawn
+            // back while it rests. Chosen, not measured; outcomes in
+            // `examples/kinematics.rs`.
             contraction_frequency: 1.4,
             contraction_ratio: 0.5,
             contraction_duty: 0.3,
-            relaxation_span: 1.0,
+            relaxation_span: 0.75,
             // A twitch, as the rowers' muscle (`muscle_timing` from the moon jelly): at
             // its own rate it lets go just as it fires again.
             muscle_timing: MuscleTiming::Twitch,
