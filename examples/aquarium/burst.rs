@@ -46,6 +46,7 @@ pub fn spawn(app: &mut App, crowd: usize, fps: f64, pacer: &mut Pacer) -> Result
         ms: settled.ms.split_off(settle(fps)),
         mesh_mb: settled.mesh_mb.split_off(settle(fps)),
         cpu: settled.cpu.split_off(settle(fps)),
+        tiers: settled.tiers.split_off(settle(fps)),
     };
     let p99 = steady.p99();
     steady.print(&format!("burst, the {expected} settled"), p99);
@@ -94,6 +95,12 @@ pub fn edit(app: &mut App, p99: f64, fps: f64, pacer: &mut Pacer) -> Result<(), 
         ),
         p99,
     );
+    // Collected in the frame before `recorded_at`; in use from then on.
+    if let Some(at) = recorded_at {
+        for at in at.saturating_sub(1)..=at + 1 {
+            println!("edit: the new cycle, {}", frames.frame(at));
+        }
+    }
     println!(
         "state hash after the edit: {:016x}",
         crate::bench::state_hash(app)
@@ -112,6 +119,8 @@ struct Frames {
     mesh_mb: Vec<f64>,
     /// Simulation and meshing CPU (ms) and tier changes of each frame.
     cpu: Vec<[f64; 3]>,
+    /// The near, mid and far tiers' CPU (ms) of each frame.
+    tiers: Vec<[f64; 3]>,
 }
 
 impl Frames {
@@ -128,6 +137,22 @@ impl Frames {
             value(store, &JellyfishDiagnostics::MESHING),
             value(store, &JellyfishDiagnostics::TIER_CHANGES),
         ]);
+        self.tiers.push([
+            value(store, &JellyfishDiagnostics::NEAR_MS),
+            value(store, &JellyfishDiagnostics::MID_MS),
+            value(store, &JellyfishDiagnostics::FAR_MS),
+        ]);
+    }
+
+    /// Frame `at`'s wall time and where its CPU went, as a line's clause.
+    fn frame(&self, at: usize) -> String {
+        let ms = self.ms.get(at).copied().unwrap_or_default();
+        let [simulation, meshing, changes] = self.cpu.get(at).copied().unwrap_or_default();
+        let [near, mid, far] = self.tiers.get(at).copied().unwrap_or_default();
+        format!(
+            "frame {at}: {ms:.2} ms; CPU simulation {simulation:.1} ms, meshing {meshing:.1} \
+             ms (near {near:.1}, mid {mid:.1}, far {far:.1}), {changes} tier changes"
+        )
     }
 
     fn p99(&self) -> f64 {
@@ -143,7 +168,6 @@ impl Frames {
             .copied()
             .enumerate()
             .fold((0, 0.0), |w, (i, ms)| if ms > w.1 { (i, ms) } else { w });
-        let [simulation, meshing, changes] = self.cpu.get(at).copied().unwrap_or_default();
         let over = self.ms.iter().filter(|&&ms| ms > p99).count();
         let mean = self.ms.iter().sum::<f64>() / self.ms.len().max(1) as f64;
         let data = self.mesh_mb.iter().copied().fold(0.0, f64::max);
@@ -155,11 +179,11 @@ impl Frames {
             .map(|ms| format!("{ms:.2}"))
             .collect();
         println!(
-            "{what}: {} frames, mean {mean:.2} ms, worst {worst:.2} ms (frame {at}: CPU \
-             simulation {simulation:.1} ms, meshing {meshing:.1} ms, {changes} tier changes), \
-             frames 0-2 {} ms, {over} over the p99 ({p99:.2} ms){}; at most {data:.2} MB of \
-             mesh data in a frame",
+            "{what}: {} frames, mean {mean:.2} ms, worst {worst:.2} ms ({}), frames 0-2 {} \
+             ms, {over} over the p99 ({p99:.2} ms){}; at most {data:.2} MB of mesh data in a \
+             frame",
             self.ms.len(),
+            self.frame(at),
             first.join(", "),
             runs(self.ms.iter().map(|&ms| ms > p99)),
         );
