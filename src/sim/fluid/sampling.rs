@@ -364,10 +364,25 @@ fn limited(value: f32, rows: [[f32; 4]; 4]) -> f32 {
 /// `value` limited to the range of `nearest`, the four values around the point.
 #[inline(always)]
 pub(super) fn within(value: f32, [a0, a1, b0, b1]: [f32; 4]) -> f32 {
-    let lo = a0.min(a1).min(b0).min(b1);
-    let hi = a0.max(a1).max(b0).max(b1);
-    // max-then-min, not clamp: NaN must reach the health check, not panic.
-    value.max(lo).min(hi)
+    let lo = least(least(least(a0, a1), b0), b1);
+    let hi = greatest(greatest(greatest(a0, a1), b0), b1);
+    // Not clamp: NaN must reach the health check, not panic.
+    least(greatest(value, lo), hi)
+}
+
+/// The lesser of `a` and `b`: `b` where `a` is NaN, and `a` where neither is less (so
+/// `a` of a −0 and a +0, which `f32::min` leaves to the platform). One `minps` and a
+/// blend, so that eight lanes at once give these bits.
+#[inline(always)]
+pub(super) fn least(a: f32, b: f32) -> f32 {
+    if a.is_nan() || b < a { b } else { a }
+}
+
+/// The greater of `a` and `b`, as [`least`]: `b` where `a` is NaN, `a` where neither is
+/// greater.
+#[inline(always)]
+pub(super) fn greatest(a: f32, b: f32) -> f32 {
+    if a.is_nan() || b > a { b } else { a }
 }
 
 /// The Catmull–Rom weights of the four values around a point a fraction `t` past the
@@ -492,6 +507,38 @@ mod tests {
         let edges = [(nx - 1) as f32, (nx - 2) as f32, 0.0, 7.999_999];
         same(edges, [(ny - 1) as f32; 4]);
         compared
+    }
+
+    /// The limiter's `least` and `greatest` are `f32::min` and `max` (the other where one
+    /// is NaN), and keep their first operand at a tie of zeros, whatever the platform does.
+    #[test]
+    fn least_and_greatest_are_min_and_max_with_ties_fixed() {
+        let values = [
+            -2.5,
+            -0.0,
+            0.0,
+            1.0,
+            f32::INFINITY,
+            -f32::INFINITY,
+            f32::NAN,
+        ];
+        for a in values {
+            for b in values {
+                let (lo, hi) = (least(a, b), greatest(a, b));
+                if a == b {
+                    assert_eq!((lo.to_bits(), hi.to_bits()), (a.to_bits(), a.to_bits()));
+                } else {
+                    assert_eq!(lo.to_bits(), a.min(b).to_bits(), "least({a}, {b})");
+                    assert_eq!(hi.to_bits(), a.max(b).to_bits(), "greatest({a}, {b})");
+                }
+            }
+        }
+        assert_eq!(
+            within(-0.0, [0.0; 4]).to_bits(),
+            (-0.0f32).to_bits(),
+            "a tie keeps the value"
+        );
+        assert_eq!(within(f32::NAN, [1.0, 2.0, 3.0, 4.0]), 1.0);
     }
 
     #[test]

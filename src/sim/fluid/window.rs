@@ -57,7 +57,7 @@ pub(super) mod avx {
         edge: Option<&[f32]>,
         out: &mut [f32],
     ) -> usize {
-        use crate::sim::fluid::sampling::{cubic_sample4, linear_sample4, within};
+        use crate::sim::fluid::sampling::{cubic_sample4, linear_sample4};
         // Rows and columns the window reaches either side of a face: a foot's cell is its
         // face's or the one before, and bicubic reads one more on each side of it.
         let reach = if CUBIC { 2 } else { 1 };
@@ -192,14 +192,12 @@ pub(super) mod avx {
                         let sum = _mm256_add_ps(sum, _mm256_mul_ps(wx[3], r[3]));
                         value = _mm256_add_ps(value, _mm256_mul_ps(w, sum));
                     }
-                    // Limited to the four nearest values, lane by lane as the sampler does.
-                    let (value, a0, a1) = (lanes(value), lanes(values[1][1]), lanes(values[1][2]));
-                    let (b0, b1) = (lanes(values[2][1]), lanes(values[2][2]));
-                    let mut limited = [0.0f32; 8];
-                    for (l, out) in limited.iter_mut().enumerate() {
-                        *out = within(value[l], [a0[l], a1[l], b0[l], b1[l]]);
-                    }
-                    load!(limited, 0)
+                    // Limited to the four nearest values, as the sampler limits one.
+                    let [a0, a1] = [values[1][1], values[1][2]];
+                    let [b0, b1] = [values[2][1], values[2][2]];
+                    let lo = least(least(least(a0, a1), b0), b1);
+                    let hi = greatest(greatest(greatest(a0, a1), b0), b1);
+                    least(greatest(value, lo), hi)
                 } else {
                     // The cell's row and the one after: rows j − 1 to j + 1 of the window,
                     // the lower two or the upper two.
@@ -260,6 +258,23 @@ pub(super) mod avx {
         ]
     }
 
+    /// `sampling::least` of eight lanes: `minps` keeps its second operand unless the
+    /// first is less (NaN compares false), and `b` replaces a NaN `a`.
+    #[target_feature(enable = "avx")]
+    #[inline]
+    fn least(a: __m256, b: __m256) -> __m256 {
+        let nan = _mm256_cmp_ps::<_CMP_UNORD_Q>(a, a);
+        _mm256_blendv_ps(_mm256_min_ps(b, a), b, nan)
+    }
+
+    /// `sampling::greatest` of eight lanes, as [`least`].
+    #[target_feature(enable = "avx")]
+    #[inline]
+    fn greatest(a: __m256, b: __m256) -> __m256 {
+        let nan = _mm256_cmp_ps::<_CMP_UNORD_Q>(a, a);
+        _mm256_blendv_ps(_mm256_max_ps(b, a), b, nan)
+    }
+
     /// The eight lanes of `v`.
     #[target_feature(enable = "avx")]
     #[inline]
@@ -299,8 +314,13 @@ pub(super) mod avx {
                 // The field's columns and rows, and the carried rows' lengths.
                 let (nx, ny) = if u_faces { (n + 1, n) } else { (n, n + 1) };
                 let (own_len, other_len) = if u_faces { (n + 1, n) } else { (n, n + 1) };
+                // Zeros of both signs side by side (the limiter's ties), a NaN now and then.
                 let field: Vec<f32> = (0..nx * ny)
-                    .map(|k| (((k + round) * 7919) % 101) as f32 / 13.0 - 3.5)
+                    .map(|k| match ((k + round) * 7919) % 101 {
+                        0..=6 => [0.0, -0.0][k % 2],
+                        7 if round % 5 == 0 => f32::NAN,
+                        r => r as f32 / 13.0 - 3.5,
+                    })
                     .collect();
                 // Mostly velocities that keep feet within reach, sometimes an edge case.
                 let mut speed = || {
