@@ -44,7 +44,8 @@ pub(super) mod avx {
     /// from `edge`, the rows `j − reach` to `j + reach` each clamped to the field (what the
     /// samplers' clamps read there), for the eights whose feet all lie within the field's
     /// rows (`0 ≤ y < ny − 1`, where the samplers clamp nothing themselves).
-    /// Returns how many eights the window took.
+    /// Returns how many eights the window took, and how many of those were one shift of
+    /// it (every foot on the same side of its face on each axis).
     #[target_feature(enable = "avx")]
     #[allow(clippy::too_many_arguments)]
     pub(in crate::sim::fluid) fn trace_row<const CUBIC: bool>(
@@ -56,7 +57,7 @@ pub(super) mod avx {
         s: f32,
         edge: Option<&[f32]>,
         out: &mut [f32],
-    ) -> usize {
+    ) -> [usize; 2] {
         use crate::sim::fluid::sampling::{cubic_sample4, linear_sample4};
         // Rows and columns the window reaches either side of a face: a foot's cell is its
         // face's or the one before, and bicubic reads one more on each side of it.
@@ -114,7 +115,7 @@ pub(super) mod avx {
         let home_y = _mm256_set1_ps(j as u32 as f32);
         let (before_y, after_y) = (_mm256_sub_ps(home_y, one), _mm256_add_ps(home_y, one));
         let lane = _mm256_setr_ps(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
-        let mut taken = 0;
+        let (mut taken, mut shifts) = (0, 0);
         let mut i = faces.start;
         loop {
             let at = i.min(faces.end - 8);
@@ -159,30 +160,47 @@ pub(super) mod avx {
                 let down = _mm256_cmp_ps::<_CMP_LT_OQ>(y, home_y);
                 let fx = _mm256_sub_ps(x, _mm256_blendv_ps(home_x, before_x, left));
                 let fy = _mm256_sub_ps(y, _mm256_blendv_ps(home_y, before_y, down));
-                // The window's rows, `j − reach` on: in each, the columns from the cell's
-                // `reach − 1` before on, two shifted loads a column, one chosen per lane.
-                // (Loops, not closures: those were left as calls.)
-                let mut columns = [[_mm256_setzero_ps(); 4]; 5];
-                for (k, row) in columns.iter_mut().enumerate().take(2 * reach + 1) {
-                    // `inside`: these rows and columns lie within `rows`.
-                    let w = (first + k) * nx + at - reach;
-                    let mut shifted = [_mm256_setzero_ps(); 5];
-                    for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
-                        *v = load!(rows, w + o);
+                // The values around each foot's cell, `values[row][column]` from the
+                // cell's `reach − 1` before on: `2·reach` rows of `2·reach`.
+                let mut values = [[_mm256_setzero_ps(); 4]; 4];
+                let (left_lanes, down_lanes) = (_mm256_movemask_ps(left), _mm256_movemask_ps(down));
+                if matches!(left_lanes, 0 | 0xff) && matches!(down_lanes, 0 | 0xff) {
+                    shifts += 1;
+                    // Every foot on the same side of its face on both axes (as in most of
+                    // a smooth flow): the eight cells are one window's shift, loaded as
+                    // such, what the blends below choose lane by lane.
+                    let w = (first + usize::from(down_lanes == 0)) * nx + at - reach
+                        + usize::from(left_lanes == 0);
+                    for (b, row) in values.iter_mut().enumerate().take(2 * reach) {
+                        for (c, value) in row.iter_mut().enumerate().take(2 * reach) {
+                            // `inside`: within the window below.
+                            *value = load!(rows, w + b * nx + c);
+                        }
                     }
-                    for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
-                        *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
+                } else {
+                    // The window's rows, `j − reach` on: in each, the columns from the
+                    // cell's `reach − 1` before on, two shifted loads a column, one
+                    // chosen per lane; then the rows likewise. (Loops, not closures:
+                    // those were left as calls.)
+                    let mut columns = [[_mm256_setzero_ps(); 4]; 5];
+                    for (k, row) in columns.iter_mut().enumerate().take(2 * reach + 1) {
+                        // `inside`: these rows and columns lie within `rows`.
+                        let w = (first + k) * nx + at - reach;
+                        let mut shifted = [_mm256_setzero_ps(); 5];
+                        for (o, v) in shifted.iter_mut().enumerate().take(2 * reach + 1) {
+                            *v = load!(rows, w + o);
+                        }
+                        for (c, column) in row.iter_mut().enumerate().take(2 * reach) {
+                            *column = _mm256_blendv_ps(shifted[c + 1], shifted[c], left);
+                        }
                     }
-                }
-                let v = if CUBIC {
-                    // The cell's row and one before, two after: rows j − 2 to j + 2 of
-                    // the window, the lower four or the upper four.
-                    let mut values = [[_mm256_setzero_ps(); 4]; 4];
-                    for (b, row) in values.iter_mut().enumerate() {
-                        for (c, value) in row.iter_mut().enumerate() {
+                    for (b, row) in values.iter_mut().enumerate().take(2 * reach) {
+                        for (c, value) in row.iter_mut().enumerate().take(2 * reach) {
                             *value = _mm256_blendv_ps(columns[b + 1][c], columns[b][c], down);
                         }
                     }
+                }
+                let v = if CUBIC {
                     let (wx, wy) = (catmull_rom(fx), catmull_rom(fy));
                     let mut value = _mm256_setzero_ps();
                     for (r, w) in values.iter().zip(wy) {
@@ -199,13 +217,8 @@ pub(super) mod avx {
                     let hi = greatest(greatest(greatest(a0, a1), b0), b1);
                     least(greatest(value, lo), hi)
                 } else {
-                    // The cell's row and the one after: rows j − 1 to j + 1 of the window,
-                    // the lower two or the upper two.
-                    let [lo, mid, hi, ..] = columns;
-                    let a0 = _mm256_blendv_ps(mid[0], lo[0], down);
-                    let a1 = _mm256_blendv_ps(mid[1], lo[1], down);
-                    let b0 = _mm256_blendv_ps(hi[0], mid[0], down);
-                    let b1 = _mm256_blendv_ps(hi[1], mid[1], down);
+                    // The cell's row and the one after.
+                    let [[a0, a1, ..], [b0, b1, ..], ..] = values;
                     let a = _mm256_add_ps(a0, _mm256_mul_ps(fx, _mm256_sub_ps(a1, a0)));
                     let b = _mm256_add_ps(b0, _mm256_mul_ps(fx, _mm256_sub_ps(b1, b0)));
                     _mm256_add_ps(a, _mm256_mul_ps(fy, _mm256_sub_ps(b, a)))
@@ -226,7 +239,7 @@ pub(super) mod avx {
                 }
             }
             if at + 8 == faces.end {
-                return taken;
+                return [taken, shifts];
             }
             i += 8;
         }
@@ -308,7 +321,7 @@ pub(super) mod avx {
             let odd = [
                 -1.0, -below_one, -0.5, -0.0, 0.0, 0.25, below_one, 1.0, -1.01,
             ];
-            let (mut taken, mut declined, mut ends_taken) = (0, 0, 0);
+            let (mut taken, mut declined, mut ends_taken, mut shifts) = (0, 0, 0, 0);
             for round in 0..1200 {
                 let u_faces = round % 2 == 0;
                 // The field's columns and rows, and the carried rows' lengths.
@@ -323,17 +336,21 @@ pub(super) mod avx {
                     })
                     .collect();
                 // Mostly velocities that keep feet within reach, sometimes an edge case.
-                let mut speed = || {
+                // In three rounds of four, each axis's velocities of one sign (the eights
+                // the window takes as one shift), and in the fourth of either.
+                let signs = [[0.0, 0.0], [1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0]][round % 4];
+                let mut speed = |sign: f32| {
                     let r = next();
                     if r < 0.03 {
                         odd[(next() * odd.len() as f32) as usize % odd.len()]
                     } else {
-                        (r - 0.03) / 0.97 * 2.0 - 1.0
+                        let v = (r - 0.03) / 0.97 * 2.0 - 1.0;
+                        if sign == 0.0 { v } else { sign * v.abs() }
                     }
                 };
-                let mut own: Vec<f32> = (0..own_len).map(|_| speed()).collect();
-                let below: Vec<f32> = (0..other_len).map(|_| speed()).collect();
-                let above: Vec<f32> = (0..other_len).map(|_| speed()).collect();
+                let mut own: Vec<f32> = (0..own_len).map(|_| speed(signs[0])).collect();
+                let below: Vec<f32> = (0..other_len).map(|_| speed(signs[1])).collect();
+                let above: Vec<f32> = (0..other_len).map(|_| speed(signs[1])).collect();
                 let j = (round / 2) % ny;
                 let first = usize::from(u_faces) + (round / 7) % 5;
                 let end = n - (round / 11) % 5;
@@ -376,7 +393,7 @@ pub(super) mod avx {
                 let mut out = vec![f32::NAN; nx];
                 let dims = [nx, ny];
                 // SAFETY: the caller asked `available()`.
-                let took = unsafe {
+                let [took, shifted] = unsafe {
                     trace_row::<CUBIC>(&field, dims, j, first..end, carried, s, edge, &mut out)
                 };
                 for (f, sampled) in out.iter().enumerate().take(end).skip(first) {
@@ -423,10 +440,15 @@ pub(super) mod avx {
                 }
                 assert_eq!(took, expected, "row {j}, faces {first}..{end}");
                 taken += took;
+                shifts += shifted;
             }
             assert!(
                 taken > 250 && declined > 250 && (ends_taken > 0 || !CUBIC),
                 "{taken} taken ({ends_taken} at the field's ends), {declined} declined"
+            );
+            assert!(
+                shifts > 100 && taken - shifts > 100,
+                "{shifts} of {taken} taken as one shift, the rest blended lane by lane"
             );
         }
 
