@@ -4,7 +4,8 @@
 //! speed, `Species::steps_per_cycle`), so the values around each foot are among the faces
 //! of a few rows around its own row, each a column or two before or after its own: three
 //! rows and three shifted loads of eight for bilinear, five and five for bicubic. Every
-//! value is then chosen lane by lane, where the general samplers gather them one at a
+//! value is then chosen lane by lane (or, where all eight feet lie on the same side of
+//! their faces, loaded as one shift), where the general samplers gather them one at a
 //! time. The cells, the fractions and the arithmetic are `sampling`'s, so the samples are
 //! its bits. x86-64 with AVX only (asked at run time): elsewhere, and for any eight of
 //! which one foot lies further out, the four-wide samplers.
