@@ -299,9 +299,22 @@ fn templates_draw_what_cpu_meshes_draw() {
         moved > 1000,
         "the picture has jellyfish that move: {moved} pixels"
     );
+    let agree = mean < 0.01 && differing * 250 < moved;
+    // A disagreement keeps its pictures where the next run does not write over them
+    // (it failed once in a full CI run and has not again alone, loaded or frozen longer).
+    let kept = (!agree).then(|| {
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
+        let kept = dir.join(format!("disagreed-{}", std::process::id()));
+        std::fs::create_dir_all(&kept).unwrap();
+        for name in ["CpuMeshes.png", "Templates.png", "Templates_later.png"] {
+            let _ = std::fs::copy(dir.join(name), kept.join(name));
+        }
+        kept
+    });
     assert!(
-        mean < 0.01 && differing * 250 < moved,
-        "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved})"
+        agree,
+        "template and CPU surfaces disagree: mean {mean:.4}, {differing} pixels (motion: {moved}); \
+         the pictures are kept in {kept:?}"
     );
 }
 
