@@ -191,6 +191,7 @@ fn shadow_light(mut commands: Commands) {
 /// far: the shader reads their rings and discs from the recorded step they share.
 #[test]
 fn templates_draw_what_cpu_meshes_draw() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
     let render = |surfaces: SurfaceMode| {
         let school = School {
             per_species: PER_SPECIES,
@@ -220,7 +221,6 @@ fn templates_draw_what_cpu_meshes_draw() {
                 return None;
             }
         };
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
         std::fs::create_dir_all(&dir).unwrap();
         // The species files load in the background, in a frame that depends on the machine's
         // load: hold the clock until every jellyfish has started, so that both renders show
@@ -303,7 +303,6 @@ fn templates_draw_what_cpu_meshes_draw() {
     // A disagreement keeps its pictures where the next run does not write over them
     // (it failed once in a full CI run and has not again alone, loaded or frozen longer).
     let kept = (!agree).then(|| {
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("aquarium_render");
         let kept = dir.join(format!("disagreed-{}", std::process::id()));
         std::fs::create_dir_all(&kept).unwrap();
         for name in ["CpuMeshes.png", "Templates.png", "Templates_later.png"] {
