@@ -6,9 +6,11 @@
 use super::settings::JellyfishSettings;
 use super::timings::JellyfishTimings;
 use bevy::asset::{AssetEventSystems, AssetTrackingSystems};
+use bevy::camera::CameraUpdateSystems;
 use bevy::camera::visibility::VisibilitySystems;
 use bevy::prelude::*;
 use bevy::transform::TransformSystems;
+use bevy::transform::systems::sync_simple_transforms;
 
 /// The plugin's systems, in the order they run within a frame.
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -21,14 +23,20 @@ pub enum JellyfishSystems {
     ChooseDetail,
     /// PostUpdate: step the slices by the frame's virtual time, in parallel over jellyfish.
     StepSlices,
+    /// PostUpdate: the water's disturbances felt (the tank's stirs sent, flashes and
+    /// escapes started, echoes passed on) where each jellyfish is at its newest step.
+    Touch,
     /// PostUpdate: move each jellyfish along its axis, blended between fixed steps.
     WriteTransforms,
-    /// PostUpdate: rebuild meshes in place, before bounds and render extraction.
+    /// PostUpdate: rebuild meshes in place, before bounds and render extraction (and
+    /// before the cameras' update: the frusta it culls by are the last frame's).
     RebuildMeshes,
-    /// PostUpdate, after Bevy's transform propagation: each jellyfish's parts (its
-    /// tentacles and glow layer) placed and bounded where their bell is, before Bevy culls.
+    /// PostUpdate, the end of Bevy's transform propagation (in its set): each jellyfish's
+    /// parts (its tentacles and glow layer) placed and bounded where their bell is, before
+    /// anything reads their transforms and before Bevy culls.
     PlaceParts,
-    /// PostUpdate: materials made, updated after edits and put on new meshes.
+    /// PostUpdate, after Bevy's transform propagation and before the assets' events:
+    /// materials made, updated after edits and put on new meshes.
     Materials,
     /// FixedUpdate: schools set their members' headings (steer your own before
     /// `StepSlices` too, in any schedule before `PostUpdate`).
@@ -73,6 +81,7 @@ impl Plugin for JellyfishSchedulePlugin {
                 PostUpdate,
                 (
                     JellyfishSystems::StepSlices,
+                    JellyfishSystems::Touch,
                     JellyfishSystems::WriteTransforms,
                     JellyfishSystems::RebuildMeshes,
                 )
@@ -80,15 +89,31 @@ impl Plugin for JellyfishSchedulePlugin {
                     .before(TransformSystems::Propagate)
                     .before(AssetEventSystems),
             )
+            // The meshes are built with the cameras' frusta and state of the last frame,
+            // both, whichever thread updates the cameras first.
+            .configure_sets(
+                PostUpdate,
+                JellyfishSystems::RebuildMeshes.before(CameraUpdateSystems),
+            )
+            // Placing the parts finishes the propagation (they are children that hold no
+            // `Transform`), so whatever reads transforms after it reads theirs placed.
             .configure_sets(
                 PostUpdate,
                 JellyfishSystems::PlaceParts
-                    .after(TransformSystems::Propagate)
+                    .in_set(TransformSystems::Propagate)
+                    .after(sync_simple_transforms)
                     .before(VisibilitySystems::CheckVisibility),
             )
             .configure_sets(
                 PostUpdate,
-                JellyfishSystems::Materials.after(JellyfishSystems::RebuildMeshes),
+                // After the transforms (a tentacle's material follows its jellyfish's
+                // scale) and before the assets' events (a material made this frame is
+                // extracted this frame); the species edits they read arrive in the same
+                // set's events, a frame later, whichever thread finishes first.
+                JellyfishSystems::Materials
+                    .after(JellyfishSystems::RebuildMeshes)
+                    .after(TransformSystems::Propagate)
+                    .before(AssetEventSystems),
             )
             .configure_sets(
                 FixedUpdate,

@@ -74,6 +74,9 @@ impl Plugin for JellyfishMaterialPlugin {
                         .chain()
                         .run_if(resource_exists::<Assets<SurfaceMaterial>>),
                 )
+                    // One order: the patterns and the images both paths paint into are
+                    // shared, and which path went first was the threads' choice.
+                    .chain()
                     .in_set(JellyfishSystems::Materials),
             );
     }

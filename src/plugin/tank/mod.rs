@@ -13,7 +13,7 @@ use super::schedule::JellyfishSystems;
 use super::slice::JellyfishSlice;
 use super::swimming::SwimMotion;
 use super::timings::JellyfishTimings;
-use super::touch::Disturbance;
+use super::touch::{Disturbance, feel_disturbances};
 use super::water::{AmbientWater, SampledWater};
 use crate::sim::tank::TankFluid;
 use bevy::prelude::*;
@@ -44,7 +44,8 @@ impl Plugin for TankWaterPlugin {
             .add_systems(
                 PostUpdate,
                 disturb
-                    .before(JellyfishSystems::StepSlices)
+                    .in_set(JellyfishSystems::Touch)
+                    .before(feel_disturbances)
                     .run_if(resource_exists::<TankWater>),
             );
     }

@@ -3,7 +3,7 @@
 //! slice's own muscles, `SliceSim::escape`); neighbours echo a flash after a short delay,
 //! at most half as bright.
 //!
-//! Disturbances are felt after the frame's steps ([`JellyfishSystems::StepSlices`]), when
+//! Disturbances are felt after the frame's steps ([`JellyfishSystems::Touch`]), when
 //! every slice has taken the steps that end at or before the frame's time, and where each
 //! jellyfish is at its newest step: an escape then starts at the same fixed step, as
 //! strongly, however the time before was split into frames. A far
@@ -35,8 +35,7 @@ impl Plugin for TouchPlugin {
                 PostUpdate,
                 (feel_disturbances, echo, flash::fade)
                     .chain()
-                    .after(JellyfishSystems::StepSlices)
-                    .before(JellyfishSystems::WriteTransforms),
+                    .in_set(JellyfishSystems::Touch),
             );
     }
 }
@@ -91,7 +90,7 @@ impl Disturbance {
 
 /// Flashes owed to neighbours: when, who, how bright and from where (world).
 #[derive(Resource, Default)]
-struct Echoes(Vec<(f64, Entity, f32, Vec3)>);
+pub(crate) struct Echoes(Vec<(f64, Entity, f32, Vec3)>);
 
 /// One jellyfish as touch sees it.
 type Touched = (
@@ -129,7 +128,7 @@ fn stepped_at(
 }
 
 /// Reads the frame's disturbances: who feels each, in entity order.
-fn feel_disturbances(
+pub(crate) fn feel_disturbances(
     mut disturbances: MessageReader<Disturbance>,
     mut jellyfish: Query<Touched>,
     parents: Query<&GlobalTransform>,
