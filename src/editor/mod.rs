@@ -22,10 +22,11 @@ mod session;
 
 pub use session::{SaveError, SpeciesEditor, write_species_file};
 
+use crate::plugin::JellyfishSystems;
 use crate::species::Species;
 use bevy::diagnostic::FrameTimeDiagnosticsPlugin;
 use bevy::prelude::*;
-use bevy_egui::{EguiPlugin, EguiPrimaryContextPass};
+use bevy_egui::{EguiPlugin, EguiPostUpdateSet, EguiPreUpdateSet, EguiPrimaryContextPass};
 use std::path::PathBuf;
 
 /// Adds the species editor and stats windows (and [`EguiPlugin`] if the app has none).
@@ -71,9 +72,24 @@ impl Plugin for JellyfishEditorPlugin {
         .register_type::<EditorConfig>()
         .register_type::<SpeciesEditor>()
         .add_systems(Update, remember_presets)
-        .add_systems(EguiPrimaryContextPass, panels::species_window);
+        // The editor's pass runs before the slices step, and egui's contexts are set up
+        // before the jellyfish change tiers: both were the threads' choice.
+        .configure_sets(
+            PostUpdate,
+            EguiPostUpdateSet::EndPass.before(JellyfishSystems::StepSlices),
+        )
+        .configure_sets(
+            PreUpdate,
+            EguiPreUpdateSet::InitContexts.before(JellyfishSystems::ChooseDetail),
+        );
         if self.stats {
-            app.add_systems(EguiPrimaryContextPass, panels::stats_window);
+            // Drawn in one order, so the windows stack the same way every frame.
+            app.add_systems(
+                EguiPrimaryContextPass,
+                (panels::species_window, panels::stats_window).chain(),
+            );
+        } else {
+            app.add_systems(EguiPrimaryContextPass, panels::species_window);
         }
     }
 }
