@@ -7,7 +7,7 @@ use crate::tank::{HALF_DEPTH, HALF_WIDTH, SURFACE};
 use bevy::input::mouse::AccumulatedMouseMotion;
 use bevy::prelude::*;
 use bevy_jellyfish::Jellyfish;
-use bevy_jellyfish::plugin::{Disturbance, TankWater};
+use bevy_jellyfish::plugin::{Disturbance, JellyfishSystems, TankWater};
 
 /// The water's cells, scene units: coarse, a fraction of a millisecond a tick.
 const CELL: f32 = 0.75;
@@ -44,7 +44,11 @@ pub fn tank_water() -> TankWater {
 
 pub fn plugin(app: &mut App) {
     app.insert_resource(tank_water())
-        .add_systems(FixedUpdate, scripted_stir)
+        .add_systems(
+            FixedUpdate,
+            // Stirred before the water steps, in every run the same tick.
+            scripted_stir.before(JellyfishSystems::StepWater),
+        )
         .add_systems(Update, (mouse_stir, mouse_touch));
 }
 
