@@ -49,3 +49,61 @@ impl Headless {
         app
     }
 }
+
+/// The pairs of systems in `world`'s schedules that touch the same data in an order left
+/// to the executor, where either is the plugin's or its data is (Bevy's own ambiguities
+/// are Bevy's): one line each, with the data they share. Such a pair runs one way or the
+/// other as the threads happen to finish, so what it decides (the frame an edit or a new
+/// material shows, a part placed with last frame's transform) depends on the machine's
+/// load. Builds each schedule not yet built, as its first run would, but those `skip`
+/// names (as their labels print).
+pub fn ambiguities_of_ours(world: &mut World, skip: &[&str]) -> Vec<String> {
+    use bevy::ecs::schedule::{
+        LogLevel, ScheduleBuildError, ScheduleBuildSettings, ScheduleBuildWarning, Schedules,
+    };
+    let Some(mut schedules) = world.remove_resource::<Schedules>() else {
+        return Vec::new();
+    };
+    // A schedule's build reads the ignored ambiguities from the world's `Schedules`.
+    let mut stand_in = Schedules::default();
+    stand_in.ignored_scheduling_ambiguities = schedules.ignored_scheduling_ambiguities.clone();
+    world.insert_resource(stand_in);
+    let mut found = Vec::new();
+    for (label, schedule) in schedules.iter_mut() {
+        if skip.contains(&format!("{label:?}").as_str()) {
+            continue;
+        }
+        let before = schedule.get_build_settings();
+        schedule.set_build_settings(ScheduleBuildSettings {
+            ambiguity_detection: LogLevel::Error,
+            use_shortnames: false,
+            report_sets: false,
+            ..before.clone()
+        });
+        if let Err(error) = schedule.initialize(world) {
+            let report = error.to_string(schedule.graph(), world);
+            if !matches!(
+                error,
+                ScheduleBuildError::Elevated(ScheduleBuildWarning::Ambiguity(_))
+            ) {
+                // Not built for another reason (a cycle): that is a finding too.
+                found.push(format!("{label:?}: {report}"));
+            }
+            found.extend(
+                report
+                    .split("\n -- ")
+                    .skip(1)
+                    .filter(|pair| pair.contains("bevy_jellyfish"))
+                    .map(|pair| {
+                        format!(
+                            "{label:?}: {}",
+                            pair.split_whitespace().collect::<Vec<_>>().join(" ")
+                        )
+                    }),
+            );
+        }
+        schedule.set_build_settings(before);
+    }
+    world.insert_resource(schedules);
+    found
+}

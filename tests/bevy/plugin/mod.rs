@@ -27,6 +27,7 @@ use std::time::Duration;
 mod debug;
 mod detail;
 mod lifecycle;
+mod order;
 mod school;
 mod species;
 mod surfaces;
