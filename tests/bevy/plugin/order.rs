@@ -30,9 +30,10 @@ fn the_plugins_systems_run_in_one_order() {
 }
 
 /// The same with Bevy's renderer (the aquarium's scene, both surface paths' systems, and
-/// the species editor), in the main app and in the render app, where the shape buffers'
-/// preparation and the surface materials' were once left unordered (`render.rs`,
-/// `RenderOrder`). Needs an adapter, as the render tests do.
+/// the species editor), in the main app and in the render app. (The shape buffers'
+/// preparation and the surface materials' share no data Bevy sees, so this does not see
+/// them unordered: `render.rs`'s `RenderOrder` checks that pair by name.) Needs an
+/// adapter, as the render tests do.
 #[test]
 fn the_plugins_systems_run_in_one_order_with_a_renderer() {
     let mut offscreen = match Offscreen::new(64, 48, |app| {
