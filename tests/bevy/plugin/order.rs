@@ -8,6 +8,7 @@ use crate::school::School;
 use crate::screenshot::Offscreen;
 use bevy::render::RenderApp;
 use bevy_jellyfish::JellyfishEditorPlugin;
+use bevy_jellyfish::plugin::JellyfishDebugPlugin;
 
 /// Every pair of systems that share data with one of the plugin's is ordered, in every
 /// schedule of the headless app (with a renderer, below). An unordered pair decides, by
@@ -29,8 +30,8 @@ fn the_plugins_systems_run_in_one_order() {
     run(&mut app, 3);
 }
 
-/// The same with Bevy's renderer (the aquarium's scene, both surface paths' systems, and
-/// the species editor), in the main app and in the render app. (The shape buffers'
+/// The same with Bevy's renderer (the aquarium's scene, both surface paths' systems, the
+/// species editor and the debug overlay), in the main app and in the render app. (The shape buffers'
 /// preparation and the surface materials' share no data Bevy sees, so this does not see
 /// them unordered: `render.rs`'s `RenderOrder` checks that pair by name.) Needs an
 /// adapter, as the render tests do.
@@ -45,7 +46,11 @@ fn the_plugins_systems_run_in_one_order_with_a_renderer() {
             surfaces: SurfaceMode::Auto,
             detail: default(),
         })
-        .add_plugins((JellyfishEditorPlugin::default(), RenderAppOrder));
+        .add_plugins((
+            JellyfishEditorPlugin::default(),
+            JellyfishDebugPlugin,
+            RenderAppOrder,
+        ));
     }) {
         Ok(offscreen) => offscreen,
         Err(e) if std::env::var("JELLYFISH_REQUIRE_RENDER").is_ok_and(|v| v == "1") => {
