@@ -52,6 +52,11 @@ pub(crate) struct Hinge {
     pub(crate) stiffness: f32,
     /// Bending (rad from rest) beyond which the hinge stiffens [`HINGE_STIFFENING`]-fold.
     pub(crate) bend_limit: f32,
+    /// The least squared length (m²) either arm is read at: a tenth of the shorter arm
+    /// at rest. The angle's gradient is 1/length across an arm, so an arm crushed to
+    /// nothing (a fringe's points pushed out of the bell onto one spot) gave the solve a
+    /// stiffness its factor could not hold, and the slice a NaN.
+    pub(crate) least_arm2: f32,
 }
 
 /// The hoop bending of one segment of an axisymmetric bell: a shell of revolution bends
@@ -181,13 +186,16 @@ pub(super) fn muscle(
 }
 
 pub(super) fn hinge(points: &[Vec2], a: usize, b: usize, c: usize, stiffness: f32) -> Hinge {
+    let (e1, e2) = (points[a] - points[b], points[c] - points[b]);
+    let least_arm = 0.1 * e1.length().min(e2.length());
     Hinge {
         a,
         b,
         c,
-        rest: signed_angle(points[a] - points[b], points[c] - points[b]),
+        rest: signed_angle(e1, e2),
         stiffness,
         bend_limit: BEND_LIMIT,
+        least_arm2: (least_arm * least_arm).max(1e-18),
     }
 }
 
@@ -323,8 +331,8 @@ pub(super) fn for_each_constraint(
     for (h, w) in counted(&body.hinges, &weights.hinges) {
         let e1 = x[h.a] - x[h.b];
         let e2 = x[h.c] - x[h.b];
-        let l1 = e1.length_squared().max(1e-18);
-        let l2 = e2.length_squared().max(1e-18);
+        let l1 = e1.length_squared().max(h.least_arm2);
+        let l2 = e2.length_squared().max(h.least_arm2);
         let ga = -e1.perp() / l1;
         let gc = e2.perp() / l2;
         let bend = hinge_bend(e1, e2, h.rest);
