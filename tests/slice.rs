@@ -130,6 +130,62 @@ fn state_bits(sim: &SliceSim) -> (Vec<u32>, Vec<u32>, u32) {
     (bell, fluid, sim.swim_distance().to_bits())
 }
 
+in_both_geometries!(fn no_jet_along_the_axis_grows_with_the_grid);
+/// The water on the bell's axis (a planar slice's mirror line) runs as fast, within a
+/// quarter, on a grid twice as fine, for every species calibrated in the geometry and the
+/// paper's model: rings near the axis spread by their own radius drove a jet one column
+/// wide along it that grew with each refinement (the paper's model in r–z 0.075 and
+/// 0.271 m/s at 60 and 120 cells, the moon jelly 0.053 and 0.092, where their margins
+/// close at a few centimetres a second; `docs/numerics.md`, "The axis").
+fn no_jet_along_the_axis_grows_with_the_grid(geometry: SliceGeometry) {
+    let mut species = calibrated_in(geometry);
+    if geometry == SliceGeometry::Axisymmetric {
+        species.push(paper(geometry));
+    }
+    let on_axis = |s: &Species| {
+        let mut sim = SliceSim::new(s).unwrap();
+        let mut fastest = 0.0f32;
+        while sim.cycle() < 3 {
+            sim.advance_with(1.0 / 60.0, |sim| {
+                let f = sim.fluid();
+                if sim.cycle() >= 1 {
+                    let (n, axis) = (f.n, f.n / 2);
+                    let column = f.v.iter().skip(axis).step_by(n);
+                    fastest = column.fold(fastest, |m, v| m.max(v.abs()));
+                }
+            });
+        }
+        fastest
+    };
+    let runs: Vec<(f32, f32)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = species
+            .iter()
+            .map(|s| {
+                scope.spawn(move || {
+                    let fine = Species {
+                        grid_resolution: 2 * s.grid_resolution,
+                        ..s.clone()
+                    };
+                    (on_axis(s), on_axis(&fine))
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for (s, (coarse, fine)) in species.iter().zip(runs) {
+        println!(
+            "{}: fastest on the axis, cycles 1-3: {coarse:.4} m/s at G, {fine:.4} at 2·G",
+            s.name
+        );
+        assert!(coarse > 0.0 && coarse.is_finite(), "{}: {coarse}", s.name);
+        assert!(
+            (fine / coarse - 1.0).abs() <= 0.25,
+            "{}: {coarse} m/s on the axis at grid G, {fine} at 2·G",
+            s.name
+        );
+    }
+}
+
 in_both_geometries!(fn swims_apex_first);
 fn swims_apex_first(geometry: SliceGeometry) {
     let mut sim = SliceSim::new(&aurelia(geometry)).unwrap();

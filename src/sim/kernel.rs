@@ -68,6 +68,32 @@ impl Stencil {
         }
     }
 
+    /// The columns of faces the stencil reaches (as [`Self::rows`]).
+    pub(crate) fn columns(&self) -> Range<usize> {
+        let columns = &self.x.index[..self.x.len];
+        match (columns.first(), columns.last()) {
+            (Some(&first), Some(&last)) => first as usize..last as usize + 1,
+            _ => 0..0,
+        }
+    }
+
+    /// Scales each tap across by `share(column)` (at most 1) and renormalises them to sum
+    /// to 1 again: the same faces, weighted otherwise. Sampling and spreading both read
+    /// the taps, so they stay adjoint and the total spread force exact.
+    pub(crate) fn reweigh_across(&mut self, share: impl Fn(usize) -> f32) {
+        let x = &mut self.x;
+        let mut sum = 0.0;
+        for (weight, &column) in x.weight[..x.len].iter_mut().zip(&x.index[..x.len]) {
+            *weight *= share(column as usize);
+            sum += *weight;
+        }
+        if sum > 0.0 {
+            for weight in &mut x.weight[..x.len] {
+                *weight /= sum;
+            }
+        }
+    }
+
     /// `(face index, weight)` pairs.
     #[cfg(test)]
     pub(crate) fn iter(&self) -> impl Iterator<Item = (usize, f32)> + '_ {

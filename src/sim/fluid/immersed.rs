@@ -91,5 +91,9 @@ impl Fluid {
             Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
         };
         out.locate(self.kernel, (gx, gy), (nx, ny), self.kernel_stretch);
+        if let Some(rings) = self.rings() {
+            let reach = reach(self.kernel, self.kernel_stretch) * self.h;
+            rings.weigh_by_volume_near_axis(c, out, reach);
+        }
     }
 }

@@ -81,6 +81,64 @@ fn ring_forces_spread_exactly_even_across_the_axis() {
 }
 
 #[test]
+fn a_ring_on_the_axis_spreads_as_a_point_and_a_far_one_as_a_ring() {
+    // Spread by ring radius, a ring on the axis put four times the kernel's share of
+    // force density on the axis column's faces against one column out (the disc's
+    // volume h/4 against h): a density ∝ 1/r, which drove a jet along the axis as narrow
+    // as the grid. Weighed by volume near the axis it is the kernel's own profile.
+    // A ring and its mirror image, each an axial newton per radian.
+    let spread = |p: Vec2, f: &mut Fluid| {
+        let mut coupling = Coupling::default();
+        coupling.locate(f, &[p, mirrored(f, p)], &[]);
+        coupling.spread(f, &[Vec2::Y, Vec2::Y]);
+    };
+    let mut f = Fluid::new(41, 0.005, 0.0, 1000.0);
+    f.set_geometry(SliceGeometry::Axisymmetric);
+    let (n, axis) = (f.n, f.axis());
+    spread(Vec2::new(axis, 0.1), &mut f);
+    let row = 20; // the point's row of `v` faces: y = 0.1 = 20·h
+    let density = |column: usize| f.force_v[row * n + column];
+    let (on, next) = (density(n / 2), density(n / 2 + 1));
+    // The kernel's own weights there, read on a planar grid.
+    let kernel = Fluid::new(41, 0.005, 0.0, 1000.0).stencil(Component::V, Vec2::new(axis, 0.1));
+    let (centre, beside) = {
+        let weights: Vec<(usize, f32)> = kernel.iter().filter(|(i, _)| i / n == row).collect();
+        (weights[1].1, weights[0].1)
+    };
+    assert!(
+        (on / next - centre / beside).abs() < 1e-4,
+        "on the axis {on}, a column out {next}: {} where the kernel's is {}",
+        on / next,
+        centre / beside
+    );
+    assert!((axial_force(&f) - 1.0).abs() < 1e-5, "{}", axial_force(&f));
+    // A ring twice the kernel's reach out spreads by its radius, as before: 1/r across.
+    let mut g = Fluid::new(41, 0.005, 0.0, 1000.0);
+    g.set_geometry(SliceGeometry::Axisymmetric);
+    let far = Vec2::new(axis - 0.04, 0.1);
+    spread(far, &mut g);
+    let planar = Fluid::new(41, 0.005, 0.0, 1000.0).stencil(Component::V, far);
+    let taps: Vec<(usize, f32)> = g.stencil(Component::V, far).iter().collect();
+    assert_eq!(
+        taps,
+        planar.iter().collect::<Vec<_>>(),
+        "the kernel's own taps"
+    );
+    let rings = g.rings().unwrap();
+    for (face, w) in taps {
+        let expected = w / (rings.cell[face % n] * g.h * g.h);
+        let image = face - face % n + Component::V.mirrored_column(face % n, n).unwrap();
+        for face in [face, image] {
+            let got = g.force_v[face];
+            assert!(
+                (got - expected).abs() <= 1e-6 * expected,
+                "face {face}: {got}"
+            );
+        }
+    }
+}
+
+#[test]
 fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
     let mut f = swirl(41);
     f.project();
