@@ -129,9 +129,11 @@ impl Rings {
             super::Component::U => &self.face,
             super::Component::V => &self.cell,
         };
-        let columns = stencil.columns();
-        let nearest = radii[columns].iter().fold(f32::INFINITY, |a, &r| a.min(r));
-        if nearest >= reach {
+        // The radii fall towards the axis column (`solved − 1`) from either side: the
+        // stencil's nearest column to it is its nearest to the axis.
+        let (columns, axis) = (stencil.columns(), self.solved - 1);
+        let nearest = axis.clamp(columns.start, columns.end.saturating_sub(1));
+        if radii.get(nearest).is_none_or(|&r| r >= reach) {
             return;
         }
         stencil.reweigh_across(|column| (radii[column] / reach).min(1.0));
