@@ -469,4 +469,6 @@ impl Body {
 }
 
 #[cfg(test)]
+mod fringe_tests;
+#[cfg(test)]
 mod tests;
