@@ -103,6 +103,15 @@ macro_rules! in_both_geometries {
     };
 }
 
+/// `run` on each of `items`, each on a thread of its own; the results in their order.
+fn in_parallel<T: Sync, R: Send>(items: &[T], run: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let run = &run;
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = items.iter().map(|x| scope.spawn(move || run(x))).collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    })
+}
+
 fn run_cycles(sim: &mut SliceSim, cycles: f32) {
     let end = sim.time() + cycles / sim.species().contraction_frequency;
     while sim.time() < end - 1e-4 {
@@ -157,20 +166,12 @@ fn no_jet_along_the_axis_grows_with_the_grid(geometry: SliceGeometry) {
         }
         fastest
     };
-    let runs: Vec<(f32, f32)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = species
-            .iter()
-            .map(|s| {
-                scope.spawn(move || {
-                    let fine = Species {
-                        grid_resolution: 2 * s.grid_resolution,
-                        ..s.clone()
-                    };
-                    (on_axis(s), on_axis(&fine))
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    let runs = in_parallel(&species, |s| {
+        let fine = Species {
+            grid_resolution: 2 * s.grid_resolution,
+            ..s.clone()
+        };
+        (on_axis(s), on_axis(&fine))
     });
     for (s, (coarse, fine)) in species.iter().zip(runs) {
         println!(
@@ -673,21 +674,13 @@ fn the_paper_model_swims_and_staggering_pays(geometry: SliceGeometry) {
 /// did nothing: the same bits in unison).
 fn every_animals_staggered_release_pays() {
     let animals = common::shipped_species();
-    let runs: Vec<(f32, f32)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = animals
-            .iter()
-            .map(|s| {
-                scope.spawn(move || {
-                    let unison = Species {
-                        expansion_stagger: 0.0,
-                        ..s.clone()
-                    };
-                    let staggered = mean_and_cv(&per_cycle(s, 20, 40)).0;
-                    (staggered, mean_and_cv(&per_cycle(&unison, 20, 40)).0)
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    let runs = in_parallel(&animals, |s| {
+        let unison = Species {
+            expansion_stagger: 0.0,
+            ..s.clone()
+        };
+        let staggered = mean_and_cv(&per_cycle(s, 20, 40)).0;
+        (staggered, mean_and_cv(&per_cycle(&unison, 20, 40)).0)
     });
     for (s, (staggered, unison)) in animals.iter().zip(runs) {
         println!(
@@ -1119,24 +1112,16 @@ fn peak(frequencies: &[f32], distances: &[f32]) -> (f32, f32) {
 
 /// Distance in 20 s, diameters, at each of `frequencies` (the paper's Fig. 5 measure).
 fn sweep(base: &Species, frequencies: &[f32]) -> Vec<f32> {
-    std::thread::scope(|s| {
-        let runs: Vec<_> = frequencies
-            .iter()
-            .map(|&f| {
-                s.spawn(move || {
-                    let species = Species {
-                        contraction_frequency: f,
-                        ..base.clone()
-                    };
-                    let mut sim = SliceSim::new(&species).unwrap();
-                    while sim.time() < 20.0 {
-                        sim.advance(0.1);
-                    }
-                    sim.swim_distance() / species.diameter
-                })
-            })
-            .collect();
-        runs.into_iter().map(|r| r.join().unwrap()).collect()
+    in_parallel(frequencies, |&f| {
+        let species = Species {
+            contraction_frequency: f,
+            ..base.clone()
+        };
+        let mut sim = SliceSim::new(&species).unwrap();
+        while sim.time() < 20.0 {
+            sim.advance(0.1);
+        }
+        sim.swim_distance() / species.diameter
     })
 }
 
@@ -1363,13 +1348,7 @@ fn a_rower_rows_alike_at_every_size() {
             .iter()
             .map(|k| animal.resized(k * animal.diameter))
             .collect();
-        let runs: Vec<(f32, f32, u32)> = std::thread::scope(|scope| {
-            let handles: Vec<_> = sized
-                .iter()
-                .map(|s| scope.spawn(move || stroke_and_refill(s)))
-                .collect();
-            handles.into_iter().map(|h| h.join().unwrap()).collect()
-        });
+        let runs = in_parallel(&sized, stroke_and_refill);
         let strokes: Vec<f32> = runs.iter().map(|r| r.0).collect();
         let speeds: Vec<f32> = runs
             .iter()
@@ -1444,13 +1423,8 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
                 (by_hand, resized)
             })
             .collect();
-        type Run = (f32, f32, u32);
-        let runs: Vec<(Run, Run)> = std::thread::scope(|scope| {
-            let handles: Vec<_> = pairs
-                .iter()
-                .map(|(a, b)| scope.spawn(move || (stroke_and_refill(a), stroke_and_refill(b))))
-                .collect();
-            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        let runs = in_parallel(&pairs, |(a, b)| {
+            (stroke_and_refill(a), stroke_and_refill(b))
         });
         for ((by_hand, _), ((hand, _, restarts), (resized, ..))) in pairs.iter().zip(&runs) {
             println!(
