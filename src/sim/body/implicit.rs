@@ -203,6 +203,7 @@ impl Solver {
         cons: &[Constraint],
         diag: impl Fn(usize) -> f32,
         damping: f32,
+        loads: &[(usize, Vec2)],
         out: &mut [Vec2],
     ) {
         self.matrix.clear_to_diagonal(0.0);
@@ -220,6 +221,9 @@ impl Solver {
         // Each element once: its explicit force at the predicted positions (the
         // right-hand side) and its stiffness.
         self.forces.iter_mut().for_each(|f| *f = Vec2::ZERO);
+        for &(i, load) in loads {
+            self.forces[i] += load;
+        }
         debug_assert_eq!(cons.len(), self.assembly.len(), "the elements prepared for");
         for (c, assembly) in cons.iter().zip(&self.assembly) {
             c.add_damped_force(&mut self.forces, damping);

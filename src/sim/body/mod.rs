@@ -41,6 +41,35 @@ use network::{
 use std::ops::Range;
 use tentacle::TentacleDrag;
 
+/// What one side's fringe pulls its margin with over a step, N per unit depth, and the
+/// share the margin's water takes directly (the rest loads the bell).
+#[derive(Clone, Copy, Debug)]
+struct Pull {
+    force: Vec2,
+    direct: f32,
+}
+
+impl Pull {
+    const NONE: Pull = Pull {
+        force: Vec2::ZERO,
+        direct: 1.0,
+    };
+
+    /// What the margin's water gets: all of the pull while it can take it.
+    fn on_margins_water(self) -> Vec2 {
+        if self.direct < 1.0 {
+            self.direct * self.force
+        } else {
+            self.force
+        }
+    }
+
+    /// The rest, a load on the bell: none while the margin's water takes it all.
+    fn on_bell(self) -> Option<Vec2> {
+        (self.direct < 1.0).then(|| -(1.0 - self.direct) * self.force)
+    }
+}
+
 /// The most a fringe point's drag may change from one step to the next, either way. The
 /// drag is taken at the last step's slip, and a cylinder's drag grows with its speed: a
 /// thin tentacle that slips far one step drags hard the next and hardly slips, then
@@ -332,12 +361,51 @@ impl Body {
             self.bell_solver.prepare(bell);
             self.tentacle_solver.prepare(tentacles);
         }
-        self.bell_solver
-            .solve_each(bell, |i| mass_over_dt2[i], damping, forces);
         slip.iter_mut().for_each(|s| *s = Vec2::ZERO);
-        if tentacles.is_empty() {
+        // The fringe first, the bell held where it is predicted to be. What drags the
+        // tentacles along pulls back on the margin they hang from: on the margin's water
+        // as far as that water can take it in a step, the rest a load on the bell, which
+        // its implicit solve spreads over the water the bell drags. All of it on the
+        // margin's water overshot wherever the fringe drags more in a step than that water
+        // weighs (a small bell's dense fringe beaten slowly), and the slice blew up.
+        let margins = [self.bell.start, self.bell.end - 1];
+        let fringe = !tentacles.is_empty();
+        let pulls = if fringe {
+            self.drag_the_fringe(tentacles, dt, mass_over_dt2, damping, slip)
+        } else {
+            [Pull::NONE; 2]
+        };
+        let mut loads = [(0, Vec2::ZERO); 2];
+        let mut count = 0;
+        for (side, pull) in pulls.iter().enumerate() {
+            if let Some(load) = pull.on_bell() {
+                loads[count] = (margins[side], load);
+                count += 1;
+            }
+        }
+        self.bell_solver
+            .solve_each(bell, |i| mass_over_dt2[i], damping, &loads[..count], forces);
+        if !fringe {
             return;
         }
+        for (side, range) in self.tentacles.clone().into_iter().enumerate() {
+            forces[range.clone()].copy_from_slice(&self.scratch[range]);
+            forces[margins[side]] -= pulls[side].on_margins_water();
+        }
+    }
+
+    /// Solves the tentacles' slip through the water against their drag, the bell held
+    /// where it is predicted to be, into `scratch` (the forces their water gets) and
+    /// `slip`; updates each point's drag for the next step; and gives each side's pull on
+    /// its margin.
+    fn drag_the_fringe(
+        &mut self,
+        tentacles: &[Constraint],
+        dt: f32,
+        mass_over_dt2: &[f32],
+        damping: f32,
+        slip: &mut [Vec2],
+    ) -> [Pull; 2] {
         let drag = &self.tentacle_drag;
         // In r–z the fringe's drag per radian is the same at any radius while the water a
         // point can push shrinks with its ring: no point slips against more drag than the
@@ -352,14 +420,24 @@ impl Body {
             tentacles,
             |i| diagonal(drag[i], i),
             damping,
+            &[],
             &mut self.scratch,
         );
         let margins = [self.bell.start, self.bell.end - 1];
+        // What each side's fringe drags in a step against what its margin's water weighs.
+        let direct = [0, 1].map(|side| {
+            let dragged: f32 = self.tentacles[side]
+                .clone()
+                .map(|i| diagonal(drag[i], i))
+                .sum();
+            let direct = (mass_over_dt2[margins[side]] / dragged).min(1.0);
+            if direct.is_nan() { 1.0 } else { direct }
+        });
+        let mut pulls = [Pull::NONE; 2];
         for (side, range) in self.tentacles.clone().into_iter().enumerate() {
             let mut pull = Vec2::ZERO;
             for i in range.clone() {
                 let f = self.scratch[i];
-                forces[i] = f;
                 slip[i] = if rings {
                     f / diagonal(self.tentacle_drag[i], i)
                 } else {
@@ -384,9 +462,12 @@ impl Body {
                     .at_angle(speed, along)
                     .clamp(last / DRAG_CHANGE, DRAG_CHANGE * last);
             }
-            // What drags the tentacles along pulls back on the margin they hang from.
-            forces[margins[side]] -= pull;
+            pulls[side] = Pull {
+                force: pull,
+                direct: direct[side],
+            };
         }
+        pulls
     }
 
     /// Moves the bell's points by the part of their implicit displacement the fluid cannot
