@@ -1238,19 +1238,11 @@ fn compound_edit(s: &mut Species, which: usize, k: f32, u: f32) -> String {
             "thickness"
         }
         12 => {
-            s.muscle_law = if u < 0.5 {
-                MuscleLaw::Force
-            } else {
-                MuscleLaw::Length
-            };
+            s.muscle_law = either(u, MuscleLaw::Force, MuscleLaw::Length);
             "muscle_law"
         }
         13 => {
-            s.muscle_timing = if u < 0.5 {
-                MuscleTiming::Twitch
-            } else {
-                MuscleTiming::Cycle
-            };
+            s.muscle_timing = either(u, MuscleTiming::Twitch, MuscleTiming::Cycle);
             "muscle_timing"
         }
         14 => {
@@ -1259,16 +1251,17 @@ fn compound_edit(s: &mut Species, which: usize, k: f32, u: f32) -> String {
             "advection and kernel"
         }
         _ => {
-            s.bending = if u < 0.5 {
-                Bending::Mesoglea
-            } else {
-                Bending::Springs
-            };
+            s.bending = either(u, Bending::Mesoglea, Bending::Springs);
             s.mesoglea_resilience = scaled(s.mesoglea_resilience, 0.05, 1.0);
             "bending and resilience"
         }
     };
     format!(", {name} (×{k:.2}, {u:.2})")
+}
+
+/// `a` for `u` below a half, else `b`.
+fn either<T>(u: f32, a: T, b: T) -> T {
+    if u < 0.5 { a } else { b }
 }
 
 /// The frequency of the longest of `distances` (one per frequency), and that distance.

@@ -4,12 +4,11 @@
 use super::tests::body;
 use super::*;
 
-#[test]
-fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
-    // Swung unevenly, so free to tilt: every point solved.
+/// The paper's body with its tentacles swung sideways, unevenly (their springs and
+/// hinges pull), and free to tilt: every point solved.
+fn swung() -> Body {
     let mut b = body();
     b.set_mirror_symmetric(false);
-    // Swing the tentacles sideways: their springs and hinges pull.
     let [left, right] = b.tentacles.clone();
     for (k, i) in left.enumerate() {
         b.points[i].x -= 0.0003 * k as f32;
@@ -17,6 +16,12 @@ fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
     for (k, i) in right.enumerate() {
         b.points[i].x += 0.0005 * k as f32;
     }
+    b
+}
+
+#[test]
+fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
+    let mut b = swung();
     let x = b.points.clone();
     let n = x.len();
     let (mut forces, mut slip) = (vec![Vec2::ZERO; n], vec![Vec2::ZERO; n]);
@@ -59,15 +64,7 @@ fn a_fringe_pulls_its_margins_water_as_far_as_that_water_can_take_and_the_bell_t
     // over the water the bell drags.
     let light = 1025.0 * 0.004 * 0.004;
     for (mass, whole) in [(light, true), (0.01 * light, false)] {
-        let mut b = body();
-        b.set_mirror_symmetric(false);
-        let [left, right] = b.tentacles.clone();
-        for (k, i) in left.enumerate() {
-            b.points[i].x -= 0.0003 * k as f32;
-        }
-        for (k, i) in right.enumerate() {
-            b.points[i].x += 0.0005 * k as f32;
-        }
+        let mut b = swung();
         let x = b.points.clone();
         let n = x.len();
         let (mut forces, mut slip) = (vec![Vec2::ZERO; n], vec![Vec2::ZERO; n]);
