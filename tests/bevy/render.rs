@@ -301,7 +301,9 @@ fn templates_draw_what_cpu_meshes_draw() {
     );
     let agree = mean < 0.01 && differing * 250 < moved;
     // A disagreement keeps its pictures where the next run does not write over them
-    // (it failed once in a full CI run and has not again alone, loaded or frozen longer).
+    // (it failed in full CI runs: the two aquariums were laid out differently, their
+    // schools filled in the order their species' files loaded; schools due together now
+    // wait for each other's species, `school::place`).
     let kept = (!agree).then(|| {
         let kept = dir.join(format!("disagreed-{}", std::process::id()));
         std::fs::create_dir_all(&kept).unwrap();

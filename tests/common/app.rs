@@ -32,7 +32,12 @@ impl Default for Headless {
 impl Headless {
     /// The finished app; `extra` adds what a test needs before plugins finish.
     pub fn build(self, extra: impl FnOnce(&mut App)) -> App {
-        let mut app = App::new();
+        self.build_on(App::new(), extra)
+    }
+
+    /// [`Self::build`] on `app`, which may hold what must come before the plugins (an
+    /// asset source).
+    pub fn build_on(self, mut app: App, extra: impl FnOnce(&mut App)) -> App {
         app.add_plugins((
             MinimalPlugins,
             self.assets,

@@ -3,6 +3,7 @@
 use super::grid::Neighbours;
 use super::{JellyfishSchool, MemberOf, SchoolMembers, Swimmer, member};
 use crate::species::Species;
+use bevy::asset::LoadState;
 use bevy::prelude::*;
 
 /// Rejection tries at one spacing before the spacing is relaxed by a tenth.
@@ -76,8 +77,8 @@ pub(super) struct Around {
     widest: f32,
 }
 
-/// Fills every school that is new or changed and whose species has loaded, despawning the
-/// members it had, [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities
+/// Fills every school that is new or changed and whose species has loaded (schools due
+/// together wait for each other's species), despawning the members it had, [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities
 /// first. Places are drawn in the box and kept at least two reaches apart, within the
 /// school and from every member of the other schools, where each was when the fill began
 /// or was placed ([`Around`]; the spacing relaxed by a tenth after each [`TRIES`]
@@ -92,7 +93,7 @@ pub(super) fn fill_schools(
         Option<&SchoolMembers>,
     )>,
     others: Query<(&Transform, &Swimmer, &MemberOf)>,
-    species: Res<Assets<Species>>,
+    (species, server): (Res<Assets<Species>>, Res<AssetServer>),
     mut waiting: Local<Vec<Entity>>,
     mut filling: Local<Vec<Filling>>,
     mut around: Local<Option<Around>>,
@@ -105,6 +106,23 @@ pub(super) fn fill_schools(
         .collect();
     due.sort_unstable();
     due.dedup();
+    // A school is placed around those placed before it, so schools that begin together
+    // begin together whatever order their species' files happen to load in (that order is
+    // the machine's): while any of them is still coming, all of them wait. A species
+    // that failed, or was never asked for, holds up none.
+    let coming = |school: &JellyfishSchool| {
+        !species.contains(&school.species)
+            && matches!(
+                server.load_state(school.species.id()),
+                LoadState::Loading | LoadState::Loaded
+            )
+    };
+    if due
+        .iter()
+        .any(|&e| schools.get(e).is_ok_and(|(_, school, ..)| coming(&school)))
+    {
+        waiting.append(&mut due);
+    }
     // Schools (re)started now: their old members go, and a fill under way starts over.
     let mut restarted: Vec<Entity> = Vec::new();
     for entity in due {

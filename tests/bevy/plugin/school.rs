@@ -205,3 +205,120 @@ fn a_large_school_fills_over_a_few_frames_apart_and_the_same_every_run() {
         "placed against where the first members were placed, not where they went"
     );
 }
+
+/// Schools begun together are laid out the same whichever species' file loads first: a
+/// school is placed around the members placed before it, and the order files load in is
+/// the machine's (under CI's load the render test once compared two aquariums laid out
+/// differently). One school's species is held back at its file (a gated asset source);
+/// the other's is there from the start. Neither fills until both are there, and their
+/// places are those of both species there at once.
+#[test]
+fn schools_begun_together_are_placed_alike_whichever_species_loads_first() {
+    use bevy::asset::AssetApp;
+    use bevy::asset::io::AssetSourceBuilder;
+    use bevy::asset::io::memory::{Dir, MemoryAssetReader};
+    use std::path::Path;
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    // A box they crowd, so that each school's places depend on the other's.
+    let half = Vec3::new(1.0, 0.8, 1.0);
+    let layout = |held: bool| {
+        let dir = Dir::default();
+        let file = Path::new("late.species.ron");
+        dir.insert_asset_text(file, &Species::aurelia().to_ron().unwrap());
+        let gate = Arc::new(AtomicBool::new(false));
+        let reader = Held {
+            files: MemoryAssetReader { root: dir },
+            open: gate.clone(),
+        };
+        let mut app = App::new();
+        app.register_asset_source(
+            "gated",
+            AssetSourceBuilder::new(move || Box::new(reader.clone())),
+        );
+        let mut app = crate::common::app::Headless {
+            settings: settings(),
+            frame: frame(60),
+            ..default()
+        }
+        .build_on(app, |_| {});
+        let first = if held {
+            app.world()
+                .resource::<AssetServer>()
+                .load("gated://late.species.ron")
+        } else {
+            add_species(&mut app, Species::aurelia())
+        };
+        let second = add_species(&mut app, Species::aurelia());
+        app.init_resource::<SpawnedAt>().add_observer(
+            |add: On<Add, MemberOf>, places: Query<&Transform>, mut at: ResMut<SpawnedAt>| {
+                at.0.push(places.get(add.entity).unwrap().translation);
+            },
+        );
+        for (seed, h) in [(7, first), (8, second)] {
+            app.world_mut().spawn((
+                JellyfishSchool::new(h, 6, half).with_seed(seed),
+                Transform::from_xyz(0.0, 5.0, 0.0),
+            ));
+        }
+        if held {
+            run(&mut app, 5);
+            let placed = app.world().resource::<SpawnedAt>().0.len();
+            assert_eq!(placed, 0, "placed while the other school's species loads");
+            gate.store(true, Ordering::Release);
+        }
+        for _ in 0..500 {
+            app.update();
+            if app.world().resource::<SpawnedAt>().0.len() == 12 {
+                break;
+            }
+            // Loading is asynchronous.
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        std::mem::take(&mut app.world_mut().resource_mut::<SpawnedAt>().0)
+    };
+    let (held, there) = (layout(true), layout(false));
+    assert_eq!(held.len(), 12, "both schools filled");
+    assert_eq!(held, there);
+}
+
+/// Files in memory whose reads wait until `open` is set: a species file still loading for
+/// as many frames as a test needs (Bevy's own gated reader is for its tests only).
+#[derive(Clone)]
+struct Held {
+    files: bevy::asset::io::memory::MemoryAssetReader,
+    open: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl bevy::asset::io::AssetReader for Held {
+    async fn read<'a>(
+        &'a self,
+        path: &'a std::path::Path,
+    ) -> Result<impl bevy::asset::io::Reader + 'a, bevy::asset::io::AssetReaderError> {
+        while !self.open.load(std::sync::atomic::Ordering::Acquire) {
+            bevy::tasks::futures_lite::future::yield_now().await;
+        }
+        self.files.read(path).await
+    }
+
+    async fn read_meta<'a>(
+        &'a self,
+        path: &'a std::path::Path,
+    ) -> Result<impl bevy::asset::io::Reader + 'a, bevy::asset::io::AssetReaderError> {
+        self.files.read_meta(path).await
+    }
+
+    async fn read_directory<'a>(
+        &'a self,
+        path: &'a std::path::Path,
+    ) -> Result<Box<bevy::asset::io::PathStream>, bevy::asset::io::AssetReaderError> {
+        self.files.read_directory(path).await
+    }
+
+    async fn is_directory<'a>(
+        &'a self,
+        path: &'a std::path::Path,
+    ) -> Result<bool, bevy::asset::io::AssetReaderError> {
+        self.files.is_directory(path).await
+    }
+}
