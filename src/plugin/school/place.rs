@@ -78,8 +78,8 @@ pub(super) struct Around {
 }
 
 /// Fills every school that is new or changed and whose species has loaded (schools due
-/// together wait for each other's species), despawning the members it had, [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities
-/// first. Places are drawn in the box and kept at least two reaches apart, within the
+/// together wait for each other's species), despawning the members it had,
+/// [`MEMBERS_PER_FRAME`] members a frame, the lowest school entities first. Places are drawn in the box and kept at least two reaches apart, within the
 /// school and from every member of the other schools, where each was when the fill began
 /// or was placed ([`Around`]; the spacing relaxed by a tenth after each [`TRIES`]
 /// failures, and kept relaxed for the school's next members: a box too full for one is too

@@ -57,11 +57,7 @@ impl Pull {
 
     /// What the margin's water gets: all of the pull while it can take it.
     fn on_margins_water(self) -> Vec2 {
-        if self.direct < 1.0 {
-            self.direct * self.force
-        } else {
-            self.force
-        }
+        self.direct * self.force
     }
 
     /// The rest, a load on the bell: none while the margin's water takes it all.
