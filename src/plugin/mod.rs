@@ -79,8 +79,8 @@ pub use jellyfish::Jellyfish;
 pub use lod::{CycleCaches, DetailPlugin};
 pub use render::{
     BellPatterns, CPU_MESH_TAG, FLASH_SPREAD, GLOW_RADIANCE, GLOW_SORT_OFFSET, JellyfishGeometry,
-    JellyfishGlow, JellyfishMaterialPlugin, JellyfishMeshes, JellyfishRenderPlugin,
-    JellyfishTentacles, PatternImages, ShapeBuffers, SpeciesMaterials, SurfaceExtension,
+    JellyfishGlow, JellyfishMaterialPlugin, JellyfishMeshes, JellyfishParts, JellyfishRenderPlugin,
+    JellyfishTentacles, PartOf, PatternImages, ShapeBuffers, SpeciesMaterials, SurfaceExtension,
     SurfaceMaterial, SurfacePath, TENTACLE_SORT_OFFSET, Tissue, WorldSurfaces, bell_material,
     glow_material, glow_tissue, tentacle_material, tentacle_material_at,
 };

@@ -35,6 +35,10 @@ pub enum JellyfishSystems {
     /// parts (its tentacles and glow layer) placed and bounded where their bell is, before
     /// anything reads their transforms and before Bevy culls.
     PlaceParts,
+    /// PostUpdate, after Bevy's visibility propagation and before its culling: each part
+    /// shown or hidden with its jellyfish (unless the part is itself made visible or
+    /// hidden).
+    ShowParts,
     /// PostUpdate, after Bevy's transform propagation and the assets' events: materials
     /// made, updated after edits and put on new meshes.
     Materials,
@@ -95,13 +99,20 @@ impl Plugin for JellyfishSchedulePlugin {
                 PostUpdate,
                 JellyfishSystems::RebuildMeshes.before(CameraUpdateSystems),
             )
-            // Placing the parts finishes the propagation (they are children that hold no
-            // `Transform`), so whatever reads transforms after it reads theirs placed.
+            // Placing the parts finishes the propagation (they hold no `Transform`), so whatever reads transforms after it reads theirs placed.
             .configure_sets(
                 PostUpdate,
                 JellyfishSystems::PlaceParts
                     .in_set(TransformSystems::Propagate)
                     .after(sync_simple_transforms)
+                    .before(VisibilitySystems::CheckVisibility),
+            )
+            // The parts are not children (`plugin::render::parts`): they take their
+            // jellyfish's visibility once Bevy has worked it out.
+            .configure_sets(
+                PostUpdate,
+                JellyfishSystems::ShowParts
+                    .after(VisibilitySystems::VisibilityPropagate)
                     .before(VisibilitySystems::CheckVisibility),
             )
             .configure_sets(

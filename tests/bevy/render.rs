@@ -20,8 +20,8 @@ use bevy::prelude::*;
 use bevy::render::{Render, RenderApp};
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
-    CPU_MESH_TAG, DetailLevels, JellyfishGlow, JellyfishMeshes, JellyfishSettings, JellyfishSlice,
-    SurfaceMaterial, SurfaceMode, SurfacePath, Tier,
+    CPU_MESH_TAG, DetailLevels, JellyfishGlow, JellyfishMeshes, JellyfishParts, JellyfishSettings,
+    JellyfishSlice, SurfaceMaterial, SurfaceMode, SurfacePath, Tier,
 };
 use bevy_jellyfish::{Jellyfish, JellyfishDiagnostics, Species};
 use std::collections::HashSet;
@@ -385,12 +385,16 @@ impl Plugin for RenderOrder {
 /// on one child, which shares the umbrella's mesh (and, with templates, its shape slot) and
 /// adds its light, so it needs no sorting.
 fn glow_layers_follow_their_umbrellas(world: &mut World, path: SurfacePath) {
-    let mut jellyfish = world.query::<(&JellyfishMeshes, &Mesh3d, Option<&MeshTag>, &Children)>();
+    let mut jellyfish =
+        world.query::<(&JellyfishMeshes, &Mesh3d, Option<&MeshTag>, &JellyfishParts)>();
     let mut glows = world.query_filtered::<(&Mesh3d, Option<&MeshTag>), With<JellyfishGlow>>();
     let mut checked = 0;
-    for (meshes, mesh, tag, children) in jellyfish.iter(world) {
+    for (meshes, mesh, tag, parts) in jellyfish.iter(world) {
         let glow = meshes.glow_entity.expect("a glow layer");
-        assert!(children.contains(&glow), "the glow layer is a child");
+        assert!(
+            parts.iter().any(|p| p == glow),
+            "the glow layer is one of its parts"
+        );
         let (glow_mesh, glow_tag) = glows.get(world, glow).expect("marked JellyfishGlow");
         assert_eq!(
             glow_mesh.0, mesh.0,

@@ -15,6 +15,7 @@
 
 use super::looks::{Look, SpeciesMaterials, looks, scale_step, step_scale, tentacle_look};
 use super::meshes::{JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+use super::parts::PartOf;
 use super::patterns::BellPatterns;
 use super::templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
 use crate::plugin::jellyfish::Jellyfish;
@@ -226,7 +227,7 @@ type Parent<M> = (
 /// `StandardMaterial`.
 type Tentacles<M> = (
     Entity,
-    &'static ChildOf,
+    &'static PartOf,
     Option<&'static MeshMaterial3d<M>>,
     Standard,
 );
@@ -298,7 +299,7 @@ fn assign<M: JellyfishLook>(
     )>,
     bells: Query<(Entity, &Jellyfish, &JellyfishMeshes, Standard), Without<MeshMaterial3d<M>>>,
     tentacles: Query<Tentacles<M>, With<JellyfishTentacles>>,
-    glows: Query<(Entity, &ChildOf, Standard), Undressed<JellyfishGlow, M>>,
+    glows: Query<(Entity, &PartOf, Standard), Undressed<JellyfishGlow, M>>,
     parents: Query<Parent<M>>,
     mut wardrobe: Wardrobe<M>,
 ) {
@@ -324,8 +325,8 @@ fn assign<M: JellyfishLook>(
     }
     // Tentacles follow their jellyfish's scale (their sort offset is in world units), so
     // dressed ones are checked too, unless the game dressed them.
-    for (entity, child_of, worn_now, standard) in &tentacles {
-        if let Ok((jelly, meshes, _, _, at)) = parents.get(child_of.parent())
+    for (entity, part_of, worn_now, standard) in &tentacles {
+        if let Ok((jelly, meshes, _, _, at)) = parents.get(part_of.jellyfish())
             && worn(meshes)
             && worn_now.is_none_or(|m| wardrobe.cache.is_ours(&m.0))
             && (worn_now.is_some() || !games(standard, &wardrobe.cache))
@@ -339,8 +340,8 @@ fn assign<M: JellyfishLook>(
         }
     }
     // A bell in a material of the game's own keeps it alone: no glow of ours over it.
-    for (entity, child_of, standard) in &glows {
-        if let Ok((jelly, meshes, bell, bell_standard, _)) = parents.get(child_of.parent())
+    for (entity, part_of, standard) in &glows {
+        if let Ok((jelly, meshes, bell, bell_standard, _)) = parents.get(part_of.jellyfish())
             && worn(meshes)
             && !games(standard, &wardrobe.cache)
             && !games(bell_standard, &wardrobe.cache)

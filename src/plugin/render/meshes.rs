@@ -1,5 +1,5 @@
 //! What a jellyfish is drawn with: its meshes (the umbrella on the jellyfish itself, the
-//! tentacles and the glow layer on children) and the path that builds them.
+//! tentacles and the glow layer on its parts, `PartOf` it) and the path that builds them.
 
 use super::recorded::{DrawnTrails, PackedCycle};
 use crate::plugin::interpolation::Snapshot;
@@ -32,9 +32,9 @@ pub struct JellyfishMeshes {
     pub umbrella: Option<Handle<Mesh>>,
     /// The tentacles' mesh, once set up.
     pub tentacles: Option<Handle<Mesh>>,
-    /// The child entity drawing the tentacles.
+    /// The entity drawing the tentacles, one of its parts ([`PartOf`](super::PartOf)).
     pub tentacle_entity: Option<Entity>,
-    /// The child entity drawing the umbrella's glow layer ([`JellyfishGlow`]).
+    /// The entity drawing the umbrella's glow layer ([`JellyfishGlow`]), one of its parts.
     pub glow_entity: Option<Entity>,
     /// How it is drawn, once set up.
     pub(crate) path: Option<SurfacePath>,
@@ -126,12 +126,12 @@ pub const CPU_MESH_TAG: u32 = u32::MAX;
 
 const _: () = assert!(CPU_MESH_TAG as usize == crate::shape::packed::layout::CPU_MESH_TAG);
 
-/// Marks the child entity holding a jellyfish's tentacle mesh.
+/// Marks the part ([`PartOf`](super::PartOf)) holding a jellyfish's tentacle mesh.
 #[derive(Component, Clone, Copy, Debug, Default, Reflect)]
 #[reflect(Component)]
 pub struct JellyfishTentacles;
 
-/// Marks the child entity that draws the umbrella a second time, additively: the glow
+/// Marks the part that draws the umbrella a second time, additively: the glow
 /// layer (see [`glow_material`](crate::plugin::render::glow_material)). It shares the umbrella's
 /// mesh, so it costs a draw, not a mesh.
 #[derive(Component, Clone, Copy, Debug, Default, Reflect)]

@@ -24,6 +24,7 @@ pub use looks::{
 };
 pub use materials::JellyfishMaterialPlugin;
 pub use meshes::{CPU_MESH_TAG, JellyfishGlow, JellyfishMeshes, JellyfishTentacles, SurfacePath};
+pub use parts::{JellyfishParts, PartOf};
 pub use patterns::{BellPatterns, PatternImages};
 pub use templates::{ShapeBuffers, SurfaceExtension, SurfaceMaterial};
 pub use tissue::Tissue;
@@ -57,7 +58,10 @@ impl Plugin for JellyfishRenderPlugin {
             )
             .add_systems(
                 PostUpdate,
-                parts::place_parts.in_set(JellyfishSystems::PlaceParts),
+                (
+                    parts::place_parts.in_set(JellyfishSystems::PlaceParts),
+                    parts::show_parts.in_set(JellyfishSystems::ShowParts),
+                ),
             );
         templates::build(app);
     }

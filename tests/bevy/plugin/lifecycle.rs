@@ -56,11 +56,11 @@ fn its_mesh_changes_between_frames() {
         "updated in place, same handle"
     );
     let tentacles = app.world().get::<JellyfishMeshes>(e).unwrap();
-    let child = tentacles.tentacle_entity.expect("tentacle child");
+    let part = tentacles.tentacle_entity.expect("tentacle part");
     assert_eq!(
-        app.world().get::<ChildOf>(child).unwrap().parent(),
+        app.world().get::<PartOf>(part).unwrap().jellyfish(),
         e,
-        "tentacles are one child mesh"
+        "tentacles are one part's mesh"
     );
 }
 
@@ -87,7 +87,11 @@ fn its_parts_sit_on_the_bell_wherever_it_is_carried() {
         let bounds = *app.world().get::<Aabb>(e).unwrap();
         for part in [meshes.tentacle_entity, meshes.glow_entity] {
             let part = part.expect("tentacles and a glow layer");
-            assert_eq!(app.world().get::<ChildOf>(part).unwrap().parent(), e);
+            assert_eq!(app.world().get::<PartOf>(part).unwrap().jellyfish(), e);
+            assert!(
+                app.world().get::<ChildOf>(part).is_none(),
+                "a part is no child for Bevy's propagation to visit"
+            );
             assert!(
                 app.world().get::<Transform>(part).is_none(),
                 "a part holds no Transform for propagation to multiply"
@@ -122,6 +126,77 @@ fn its_parts_sit_on_the_bell_wherever_it_is_carried() {
         turned.rotation().angle_between(first.rotation()) > 0.9,
         "the carrier's turn reached the bell and its parts"
     );
+}
+
+/// A part is shown and hidden with its jellyfish, as a child would be, wherever the
+/// jellyfish's visibility comes from (here a carrier it is a child of), unless the part is
+/// made visible or hidden itself.
+#[test]
+fn its_parts_are_shown_and_hidden_with_it() {
+    let mut app = Headless {
+        settings: settings(),
+        frame: frame(60),
+        ..default()
+    }
+    .build(|app| {
+        app.add_plugins(VisibilityPlugin);
+    });
+    let h = add_species(&mut app, species());
+    let carrier = app
+        .world_mut()
+        .spawn((Transform::default(), Visibility::default()))
+        .id();
+    let e = app
+        .world_mut()
+        .spawn((
+            Jellyfish::new(h.clone()),
+            Transform::default(),
+            ChildOf(carrier),
+        ))
+        .id();
+    run(&mut app, 3);
+    let meshes = app.world().get::<JellyfishMeshes>(e).unwrap();
+    let parts = [meshes.tentacle_entity, meshes.glow_entity].map(|p| p.expect("a part"));
+    let shown = |app: &App| parts.map(|p| app.world().get::<InheritedVisibility>(p).unwrap().get());
+    assert_eq!(shown(&app), [true, true]);
+    let set = |app: &mut App, entity: Entity, to: Visibility| {
+        *app.world_mut().get_mut::<Visibility>(entity).unwrap() = to;
+        run(app, 1);
+    };
+    set(&mut app, carrier, Visibility::Hidden);
+    assert!(!app.world().get::<InheritedVisibility>(e).unwrap().get());
+    assert_eq!(shown(&app), [false, false], "hidden with the carrier");
+    set(&mut app, parts[0], Visibility::Visible);
+    assert_eq!(
+        shown(&app),
+        [true, false],
+        "tentacles made visible themselves"
+    );
+    set(&mut app, parts[0], Visibility::Hidden);
+    set(&mut app, carrier, Visibility::Inherited);
+    assert_eq!(shown(&app), [false, true], "tentacles hidden themselves");
+    set(&mut app, parts[0], Visibility::Inherited);
+    assert_eq!(shown(&app), [true, true]);
+    // The parts of one spawned while its carrier is hidden are hidden from their first
+    // frame.
+    set(&mut app, carrier, Visibility::Hidden);
+    let later = app
+        .world_mut()
+        .spawn((Jellyfish::new(h), Transform::default(), ChildOf(carrier)))
+        .id();
+    let mut seen = 0;
+    for _ in 0..4 {
+        run(&mut app, 1);
+        let meshes = app.world().get::<JellyfishMeshes>(later).unwrap();
+        for part in [meshes.tentacle_entity, meshes.glow_entity]
+            .into_iter()
+            .flatten()
+        {
+            assert!(!app.world().get::<InheritedVisibility>(part).unwrap().get());
+            seen += 1;
+        }
+    }
+    assert!(seen > 0, "its parts were made");
 }
 
 #[test]

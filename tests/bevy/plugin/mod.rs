@@ -6,6 +6,7 @@
 use crate::common::app::Headless;
 use crate::common::species_files;
 use bevy::asset::{AssetLoadFailedEvent, AssetPlugin};
+use bevy::camera::visibility::VisibilityPlugin;
 use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::ecs::system::RunSystemOnce;
 use bevy::mesh::MeshTag;
@@ -15,7 +16,7 @@ use bevy::render::storage::ShaderBuffer;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     CPU_MESH_TAG, CycleCaches, DetailLevels, JellyfishGeometry, JellyfishGlow, JellyfishMeshes,
-    JellyfishSlice, ShapeBuffers, SurfaceMode, SurfacePath, TENTACLE_SORT_OFFSET, Tier,
+    JellyfishSlice, PartOf, ShapeBuffers, SurfaceMode, SurfacePath, TENTACLE_SORT_OFFSET, Tier,
 };
 use bevy_jellyfish::{
     Jellyfish, JellyfishDiagnostics, JellyfishSettings, SliceGeometry, SliceSim, Species,

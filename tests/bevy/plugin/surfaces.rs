@@ -263,10 +263,10 @@ fn switching_surfaces_moves_living_jellyfish_between_paths() {
 fn glow_layers_match_umbrellas(app: &mut App) {
     let mut glows = app
         .world_mut()
-        .query_filtered::<(Entity, &Mesh3d, Option<&MeshTag>, &ChildOf), With<JellyfishGlow>>();
+        .query_filtered::<(Entity, &Mesh3d, Option<&MeshTag>, &PartOf), With<JellyfishGlow>>();
     let glows: Vec<_> = glows
         .iter(app.world())
-        .map(|(e, m, t, c)| (e, m.0.id(), t.map(|t| t.0), c.parent()))
+        .map(|(e, m, t, c)| (e, m.0.id(), t.map(|t| t.0), c.jellyfish()))
         .collect();
     let umbrellas = tags(app);
     assert_eq!(glows.len(), umbrellas.len(), "{glows:?}");
