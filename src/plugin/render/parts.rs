@@ -59,16 +59,14 @@ pub(super) fn place_parts(
     given: Query<Entity, (Part, With<Transform>)>,
     mut commands: Commands,
 ) {
-    parts
-        .par_iter_mut()
-        .for_each(|(mut placed, mut aabb, parent)| {
-            if let Ok((bell, meshes)) = bells.get(parent.jellyfish()) {
-                placed.set_if_neq(*bell);
-                if let Some(bounds) = meshes.bounds {
-                    *aabb = bounds;
-                }
+    parts.par_iter_mut().for_each(|(mut placed, mut aabb, of)| {
+        if let Ok((bell, meshes)) = bells.get(of.jellyfish()) {
+            placed.set_if_neq(*bell);
+            if let Some(bounds) = meshes.bounds {
+                *aabb = bounds;
             }
-        });
+        }
+    });
     for part in &given {
         commands.entity(part).remove::<Transform>();
     }
