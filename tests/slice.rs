@@ -829,16 +829,21 @@ fn a_stroke_hardly_swims_where_viscosity_rules(geometry: SliceGeometry) {
 }
 
 in_both_geometries!(#[ignore = "long: every species at three sizes with no, its own and a 3× longer fringe, 40 strokes"] fn tentacles_slow_the_bell_down);
-/// Tentacles add drag and slow the bell, the longer the more (Miles & Battista 2019). In
-/// the plane each species' own fringe costs it 5–30%. In r–z a short dense fringe can row
-/// as a skirt (the moon jelly's of 200 tentacles an eighth of its diameter long swam 8%
-/// faster than bare on the paper's bell; now it costs the animal's 2%), so there its own
-/// fringe may change its speed by up to 30% either way. In both, a fringe three
-/// times as long must slow it by at least 5% more than its own. Each species at half and
-/// twice its size too: a fringe weighs more on a smaller bell (its drag against the bell's
-/// inertia grows as 1/Re), within those bounds from half to twice.
+/// Tentacles add drag and slow the bell, the longer the more (Miles & Battista 2019): each
+/// species' own fringe costs it 5–30% at its own size, and a fringe three times as long at
+/// least 5% more than its own. Each species at half and twice its size too, where a fringe
+/// weighs more on the smaller bell and less on the bigger (its drag against the bell's
+/// inertia goes as 1/Re): there, in r–z, within 30% either way, for a short dense fringe
+/// can row as a skirt (the moon jelly's 5 mm one did: 1% faster than bare on the paper's
+/// bell, `docs/physics.md` section 5) and on a bell twice as big a fringe costs a few
+/// percent (*Aequorea*'s and *Sarsia*'s 3–4%).
 fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
+    let own_sizes: Vec<(String, f32)> = calibrated_in(geometry)
+        .iter()
+        .map(|s| (s.name.clone(), s.diameter))
+        .collect();
     for s in calibrated_at_three_sizes(geometry) {
+        let at_own_size = own_sizes.contains(&(s.name.clone(), s.diameter));
         let speed = |length: f32| {
             let fringe = Species {
                 tentacle_length: length,
@@ -851,14 +856,14 @@ fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
         let longer = 1.0 - speed(3.0 * s.tentacle_length) / without;
         let name = sized(&s);
         println!(
-            "{name}: {with:.3} diameters per cycle with tentacles, {without:.3} without: {:.0}% \
-             slower; with a fringe 3× as long, {:.0}% slower",
+            "{name}: {with:.3} diameters per cycle with tentacles, {without:.3} without: {:.1}% \
+             slower; with a fringe 3× as long, {:.1}% slower",
             100.0 * slower,
             100.0 * longer
         );
         let own = match geometry {
-            SliceGeometry::Planar => 0.05..=0.30,
-            SliceGeometry::Axisymmetric => -0.30..=0.30,
+            SliceGeometry::Axisymmetric if !at_own_size => -0.30..=0.30,
+            _ => 0.05..=0.30,
         };
         assert!(own.contains(&slower), "{name}: {slower}");
         assert!(longer >= slower + 0.05, "{name}: {longer} against {slower}");
@@ -1264,13 +1269,27 @@ fn either<T>(u: f32, a: T, b: T) -> T {
     if u < 0.5 { a } else { b }
 }
 
-/// The frequency of the longest of `distances` (one per frequency), and that distance.
+/// Where `distances` (one per frequency, evenly spaced) peak, and the longest of them. The
+/// peak is the vertex of the parabola through the longest and its two neighbours, not the
+/// longest's own frequency: a sweep's top is flat within a percent over a step of its
+/// frequencies, so which sample is longest says little about where the peak moved (the
+/// moon jelly's 80 mm bell twice as stiff swims 2.074 and 2.066 D at 0.57 and 0.65 Hz).
 fn peak(frequencies: &[f32], distances: &[f32]) -> (f32, f32) {
     let (i, best) = distances
         .iter()
         .enumerate()
         .fold((0, f32::MIN), |m, (i, &x)| if x > m.1 { (i, x) } else { m });
-    (frequencies[i], best)
+    if i == 0 || i + 1 == distances.len() {
+        return (frequencies[i], best);
+    }
+    let (below, above) = (distances[i - 1], distances[i + 1]);
+    let curvature = below - 2.0 * best + above;
+    if curvature >= 0.0 {
+        return (frequencies[i], best);
+    }
+    let offset = 0.5 * (below - above) / curvature;
+    let step = frequencies[i + 1] - frequencies[i];
+    (frequencies[i] + offset * step, best)
 }
 
 /// Distance in 20 s, diameters, at each of `frequencies` (the paper's Fig. 5 measure).
@@ -1298,7 +1317,7 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
     let (f, best) = peak(&d);
     let (low, high) = (d[0], d[d.len() - 1]);
     println!(
-        "the paper's model: peak {f} Hz, {best:.2} D in 20 s; ends {low:.2} and {high:.2} D: {d:.2?}"
+        "the paper's model: peak {f:.2} Hz, {best:.2} D in 20 s; ends {low:.2} and {high:.2} D: {d:.2?}"
     );
     assert!((0.4..=1.2).contains(&f), "peak at {f} Hz");
     assert!(best >= 1.15 * low && best >= 1.15 * high);
@@ -1308,7 +1327,7 @@ fn the_sweep_peaks_at_the_bells_resonance(geometry: SliceGeometry) {
         ..base
     };
     let (f_stiff, _) = peak(&sweep(&stiffer, &frequencies));
-    println!("bell twice as stiff: peak {f_stiff} Hz");
+    println!("bell twice as stiff: peak {f_stiff:.2} Hz");
     assert!(
         f_stiff > f,
         "stiffer peaks at {f_stiff} Hz, the paper's model at {f} Hz"
@@ -1494,13 +1513,16 @@ fn the_moon_jelly_refills_by_the_next_stroke_as_its_record_does() {
 #[test]
 #[ignore = "long: the two rowers at three and four sizes, 20 strokes each"]
 /// Issue 28: a rower grown or shrunk (`Species::resized`: every length scaled, beating at
-/// its animal's rate for the size) still rows as the animal does. Its distance a stroke
-/// stays within 15% across sizes, as McHenry & Jed (2003) find *Aurelia*'s kinematics
-/// nearly similar through growth; its speed rises with size, but more slowly than in
-/// proportion (the pulse rate falls as it grows: their speed scales below kinematic
-/// similarity); and under way it never drifts backwards while its bell refills. (*Sarsia*
-/// is not held to this: its stroke shrinks at small sizes where Katija et al. 2015 find
-/// the animal's does not, `docs/physics.md` section 5.)
+/// its animal's rate for the size) still rows as the animal does. Its bare bell's distance
+/// a stroke stays within 15% across sizes, as McHenry & Jed (2003) find *Aurelia*'s
+/// kinematics nearly similar through growth; with its fringe within 20%, for a fringe's
+/// drag weighs more on a smaller bell (against the bell's inertia as 1/Re: the moon
+/// jelly's own slows it 11% at 20 mm and 4% at 80 mm, `tentacles_slow_the_bell_down`).
+/// Its speed rises with size, but more slowly than in proportion (the pulse rate falls as
+/// it grows: their speed scales below kinematic similarity); and under way it never
+/// drifts backwards while its bell refills. (*Sarsia* is not held to this: its stroke
+/// shrinks at small sizes where Katija et al. 2015 find the animal's does not,
+/// `docs/physics.md` section 5.)
 fn a_rower_rows_alike_at_every_size() {
     let rowers = [
         (Species::aurelia(), [0.5, 1.0, 2.0, 3.875].as_slice()),
@@ -1513,6 +1535,17 @@ fn a_rower_rows_alike_at_every_size() {
             .collect();
         let runs = in_parallel(&sized, stroke_and_refill);
         let strokes: Vec<f32> = runs.iter().map(|r| r.0).collect();
+        let bare: Vec<Species> = sized
+            .iter()
+            .map(|s| Species {
+                tentacle_length: 0.0,
+                ..s.clone()
+            })
+            .collect();
+        let bare: Vec<f32> = in_parallel(&bare, stroke_and_refill)
+            .iter()
+            .map(|r| r.0)
+            .collect();
         let speeds: Vec<f32> = runs
             .iter()
             .zip(&sized)
@@ -1527,7 +1560,14 @@ fn a_rower_rows_alike_at_every_size() {
                 1000.0 * speed
             );
         }
-        assert!(spread(&strokes) <= 0.15, "{}: {strokes:?}", animal.name);
+        println!(
+            "{}: a stroke spread {:.1}% across sizes, bare {:.1}% ({bare:.3?})",
+            animal.name,
+            100.0 * spread(&strokes),
+            100.0 * spread(&bare)
+        );
+        assert!(spread(&bare) <= 0.15, "{} bare: {bare:?}", animal.name);
+        assert!(spread(&strokes) <= 0.20, "{}: {strokes:?}", animal.name);
         assert!(
             speeds.windows(2).all(|w| w[1] > w[0]),
             "{}: {speeds:?}",
