@@ -838,36 +838,43 @@ in_both_geometries!(#[ignore = "long: every species at three sizes with no, its 
 /// bell, `docs/physics.md` section 5) and on a bell twice as big a fringe costs a few
 /// percent (*Aequorea*'s and *Sarsia*'s 3–4%).
 fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
-    let own_sizes: Vec<(String, f32)> = calibrated_in(geometry)
-        .iter()
-        .map(|s| (s.name.clone(), s.diameter))
-        .collect();
-    for s in calibrated_at_three_sizes(geometry) {
-        let at_own_size = own_sizes.contains(&(s.name.clone(), s.diameter));
-        let speed = |length: f32| {
-            let fringe = Species {
-                tentacle_length: length,
-                ..s.clone()
-            };
-            mean_and_cv(&per_cycle(&fringe, 20, 40)).0
-        };
-        let (with, without) = (speed(s.tentacle_length), speed(0.0));
-        let slower = 1.0 - with / without;
-        let longer = 1.0 - speed(3.0 * s.tentacle_length) / without;
-        let name = sized(&s);
-        println!(
-            "{name}: {with:.3} diameters per cycle with tentacles, {without:.3} without: {:.1}% \
-             slower; with a fringe 3× as long, {:.1}% slower",
-            100.0 * slower,
-            100.0 * longer
-        );
-        let own = match geometry {
-            SliceGeometry::Axisymmetric if !at_own_size => -0.30..=0.30,
-            _ => 0.05..=0.30,
-        };
-        assert!(own.contains(&slower), "{name}: {slower}");
-        assert!(longer >= slower + 0.05, "{name}: {longer} against {slower}");
+    for base in calibrated_in(geometry) {
+        let d = base.diameter;
+        for (s, at_own_size) in [
+            (base.resized(0.5 * d), false),
+            (base.clone(), true),
+            (base.resized(2.0 * d), false),
+        ] {
+            fringe_slows_the_bell(geometry, &s, at_own_size);
+        }
     }
+}
+
+/// [`tentacles_slow_the_bell_down`] for one species at one size.
+fn fringe_slows_the_bell(geometry: SliceGeometry, s: &Species, at_own_size: bool) {
+    let speed = |length: f32| {
+        let fringe = Species {
+            tentacle_length: length,
+            ..s.clone()
+        };
+        mean_and_cv(&per_cycle(&fringe, 20, 40)).0
+    };
+    let (with, without) = (speed(s.tentacle_length), speed(0.0));
+    let slower = 1.0 - with / without;
+    let longer = 1.0 - speed(3.0 * s.tentacle_length) / without;
+    let name = sized(s);
+    println!(
+        "{name}: {with:.3} diameters per cycle with tentacles, {without:.3} without: {:.1}% \
+         slower; with a fringe 3× as long, {:.1}% slower",
+        100.0 * slower,
+        100.0 * longer
+    );
+    let own = match geometry {
+        SliceGeometry::Axisymmetric if !at_own_size => -0.30..=0.30,
+        _ => 0.05..=0.30,
+    };
+    assert!(own.contains(&slower), "{name}: {slower}");
+    assert!(longer >= slower + 0.05, "{name}: {longer} against {slower}");
 }
 
 #[test]
