@@ -47,12 +47,15 @@ fn calibrated_in(geometry: SliceGeometry) -> Vec<Species> {
 /// (`Species::resized`: every length, and the pulse rate its animal's at the size).
 fn calibrated_at_three_sizes(geometry: SliceGeometry) -> Vec<Species> {
     calibrated_in(geometry)
-        .into_iter()
-        .flat_map(|s| {
-            let d = s.diameter;
-            [s.resized(0.5 * d), s.clone(), s.resized(2.0 * d)]
-        })
+        .iter()
+        .flat_map(three_sizes)
         .collect()
+}
+
+/// `s` shrunk to half its diameter, itself, and grown to twice it (`Species::resized`).
+fn three_sizes(s: &Species) -> [Species; 3] {
+    let d = s.diameter;
+    [s.resized(0.5 * d), s.clone(), s.resized(2.0 * d)]
 }
 
 /// A species' name and its diameter in millimetres, as "Sarsia 8 mm".
@@ -839,13 +842,8 @@ in_both_geometries!(#[ignore = "long: every species at three sizes with no, its 
 /// percent (*Aequorea*'s and *Sarsia*'s 3–4%).
 fn tentacles_slow_the_bell_down(geometry: SliceGeometry) {
     for base in calibrated_in(geometry) {
-        let d = base.diameter;
-        for (s, at_own_size) in [
-            (base.resized(0.5 * d), false),
-            (base.clone(), true),
-            (base.resized(2.0 * d), false),
-        ] {
-            fringe_slows_the_bell(geometry, &s, at_own_size);
+        for (i, s) in three_sizes(&base).iter().enumerate() {
+            fringe_slows_the_bell(geometry, s, i == 1);
         }
     }
 }
