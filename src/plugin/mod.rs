@@ -78,7 +78,7 @@ pub use interpolation::InterpolationPlugin;
 pub use jellyfish::Jellyfish;
 pub use lod::{CycleCaches, DetailPlugin};
 pub use render::{
-    BellPatterns, CPU_MESH_TAG, FLASH_SPREAD, GLOW_RADIANCE, GLOW_SORT_OFFSET, JellyfishGeometry,
+    BellPatterns, CPU_MESH_TAG, FLASH_SPREAD, GLOW_RADIANCE, GLOW_SORT_AHEAD, JellyfishGeometry,
     JellyfishGlow, JellyfishMaterialPlugin, JellyfishMeshes, JellyfishParts, JellyfishRenderPlugin,
     JellyfishTentacles, PartOf, PatternImages, ShapeBuffers, SpeciesMaterials, SurfaceExtension,
     SurfaceMaterial, SurfacePath, TENTACLE_SORT_OFFSET, Tissue, WorldSurfaces, bell_material,

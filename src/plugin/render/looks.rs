@@ -122,12 +122,14 @@ pub fn bell_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
 /// [`GLOW_RADIANCE`], brighter along the canals and over the gonads when the `pattern` is
 /// given.
 ///
-/// Added light commutes with added light, not with its bell's blend: drawn before the
-/// bell, the bell veils it to `1 − alpha` of itself. The two share a mesh and a transform,
-/// so blended surfaces sorted by their centres tied, and the tie went by the order the
-/// renderer met the entities in: a jellyfish moved to another table (a marker added)
-/// glowed a third fainter. So the glow sorts [`GLOW_SORT_OFFSET`] diameters nearer than
-/// its bell and always draws over it.
+/// Added light commutes with added light, not with a bell's blend: drawn before a bell,
+/// that bell veils it to `1 − alpha` of itself. Its own bell shares its mesh and
+/// transform, so sorted by their centres the two tied, and the tie went by the order the
+/// renderer met the entities in (a jellyfish moved to another table glowed a third
+/// fainter); another bell overlapping it in the view veiled it or not as their centres
+/// swapped, a pop of up to 16 of 255 (`examples/translucency.rs`). So every glow layer
+/// sorts [`GLOW_SORT_AHEAD`] nearer than it is and draws after every blended body: never
+/// veiled, which the per-fragment order (OIT) would do a little where a bell is in front.
 pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> StandardMaterial {
     let [r, g, b] = species.glow_color;
     let mut radiance = LinearRgba::rgb(r, g, b) * (species.glow * GLOW_RADIANCE);
@@ -142,15 +144,17 @@ pub fn glow_material(species: &Species, pattern: Option<&PatternImages>) -> Stan
         double_sided: true,
         cull_mode: None,
         fog_enabled: true,
-        depth_bias: GLOW_SORT_OFFSET * species.diameter,
+        depth_bias: GLOW_SORT_AHEAD,
         ..default()
     }
 }
 
-/// How much nearer than its bell a jellyfish's glow layer counts when blended surfaces are
-/// sorted, in bell diameters (at scale 1): enough to break the tie with the bell at any
-/// distance a jellyfish is drawn at, too little to pass another jellyfish.
-pub const GLOW_SORT_OFFSET: f32 = 0.05;
+/// How much nearer than it is a glow layer counts when blended surfaces are sorted, in
+/// world units: farther than a scene's jellyfish lie apart, so every glow layer draws after
+/// every blended body. Bevy also hands it to the depth test as a constant bias of as many
+/// of the depth buffer's least steps: one to two ten-thousandths of the distance to the
+/// camera, nothing a glow shows through an opaque edge.
+pub const GLOW_SORT_AHEAD: f32 = 1000.0;
 
 /// How much farther than its centre a jellyfish's tentacles and oral tubes count when
 /// blended surfaces are sorted, in bell diameters.
@@ -217,8 +221,9 @@ mod tests {
         assert_eq!(bell.tissue.kind, Tissue::SHELL);
         assert_eq!(tentacles.tissue.kind, Tissue::SOLID);
         assert_eq!(glow.tissue.kind, Tissue::PAINTED);
-        // The glow shares its bell's mesh and centre: it must sort nearer, never tie.
-        assert!(glow.base.depth_bias > bell.base.depth_bias);
+        // The glow shares its bell's mesh and centre: it must sort nearer, never tie; and
+        // nearer than any other bell of a scene, so none veils it as their centres swap.
+        assert!(glow.base.depth_bias >= bell.base.depth_bias + 100.0);
         assert!(tentacles.base.depth_bias < bell.base.depth_bias);
         let [r, g, b] = species.glow_color;
         let band = species.glow_band * GLOW_RADIANCE;

@@ -19,7 +19,7 @@ mod tissue;
 pub use flash::FLASH_SPREAD;
 pub use geometry::{JellyfishGeometry, WorldSurfaces};
 pub use looks::{
-    GLOW_RADIANCE, GLOW_SORT_OFFSET, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material,
+    GLOW_RADIANCE, GLOW_SORT_AHEAD, SpeciesMaterials, TENTACLE_SORT_OFFSET, bell_material,
     glow_material, glow_tissue, tentacle_material, tentacle_material_at,
 };
 pub use materials::JellyfishMaterialPlugin;
