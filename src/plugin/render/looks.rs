@@ -5,9 +5,10 @@
 //! two bells overlap the order of the whole meshes decides which is in front; a
 //! jellyfish's tentacles sort behind its bell ([`tentacle_material_at`]). Added light does not
 //! depend on the order it is drawn in: the bright part of a jellyfish is additive and
-//! needs no sorting, and the body is faint enough that drawing it in the wrong order
-//! changes a pixel by little (`examples/translucency.rs` measures it). For close-ups,
-//! Bevy's order-independent transparency fixes the body too (see the aquarium's `--oit`).
+//! draws after every body ([`GLOW_SORT_AHEAD`]), and the body is faint enough that drawing
+//! it in the wrong order changes a pixel by little (`examples/translucency.rs` measures
+//! it). For close-ups, Bevy's order-independent transparency fixes the body too (see the
+//! aquarium's `--oit`).
 //!
 //! These are `StandardMaterial`s, worn by CPU meshes as they are and by template meshes
 //! through [`SurfaceMaterial`](super::SurfaceMaterial), which extends them.
