@@ -1603,9 +1603,13 @@ fn a_rower_rows_alike_at_every_size() {
 /// thickness, tentacle length) and its pulse rate, as `Species::resized` makes every length
 /// and its bending. The animals bend as a plate of their mesoglea (`Bending::Mesoglea`), so
 /// such a bell keeps a rigidity that fits its size and swims as the resized one does (what
-/// still differs are the lengths left as they were: its tentacles' thickness, its
-/// manubrium). With the springs' constant left at the small bell's, a 155 mm moon jelly
-/// was restarted ten times in fourteen strokes and swam a sixth as far.
+/// still differs are the lengths left as they were: its manubrium, carried one way). With
+/// the springs' constant left at the small bell's, a 155 mm moon jelly was restarted ten
+/// times in fourteen strokes and swam a sixth as far. The tentacles' thickness is held the
+/// same in both: a thicker tentacle drags more along its length (the layer it drags is
+/// thinner for it, `TentacleDrag::along_one`), so *Sarsia* made 8 mm by its lengths alone,
+/// its 0.3 mm tentacles unscaled, swims a fifth less than the resized animal, whose are half
+/// as thick: a real difference, not the bending this checks, and checked apart.
 fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
     let animals = [
         // 20 mm to an adult's 30 cm.
@@ -1619,7 +1623,10 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
         let pairs: Vec<(Species, Species)> = scales
             .iter()
             .map(|&k| {
-                let resized = animal.resized(k * animal.diameter);
+                let resized = Species {
+                    tentacle_radius: animal.tentacle_radius,
+                    ..animal.resized(k * animal.diameter)
+                };
                 let by_hand = Species {
                     diameter: resized.diameter,
                     height: animal.height * k,
@@ -1651,6 +1658,22 @@ fn a_bell_resized_by_its_lengths_alone_swims_as_the_resized_animal() {
             );
         }
     }
+    // Four tentacles apart each drag their own layer, the thicker the harder: at 8 mm,
+    // tentacles of the 16 mm animal's thickness cost the bell at least a tenth more of its
+    // stroke than the resized animal's (Stokes drag along them, whose layer spans the
+    // length, told the two apart by 9%).
+    let sarsia = Species::sarsia();
+    let thin = sarsia.resized(0.5 * sarsia.diameter);
+    let thick = Species {
+        tentacle_radius: sarsia.tentacle_radius,
+        ..thin.clone()
+    };
+    let strokes = in_parallel(&[thin, thick], |s| stroke_and_refill(s).0);
+    println!(
+        "Sarsia at 8 mm: {:.3} D a stroke with 0.15 mm tentacles, {:.3} with 0.3 mm",
+        strokes[0], strokes[1]
+    );
+    assert!(strokes[1] < 0.9 * strokes[0], "{strokes:?}");
 }
 
 #[test]

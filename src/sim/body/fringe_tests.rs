@@ -186,6 +186,76 @@ fn a_tentacle_drags_less_along_than_across_and_a_dense_fringe_no_more_than_a_she
 }
 
 #[test]
+fn a_tentacle_on_its_own_drags_the_layer_it_grows_along_its_length() {
+    use super::depth::Depth;
+    use super::tentacle::TentacleDrag;
+    let drag = |s: &Species| TentacleDrag::new(s, 0.001, Depth::new(s, 0.0, 0.001));
+    let s = Species::sarsia();
+    let (a, length) = (s.tentacle_radius, s.tentacle_length);
+    let (mu, nu) = (s.viscosity, s.kinematic_viscosity());
+    let stokes_along = 2.0 * std::f32::consts::PI * mu / ((length / a).ln() + 0.5);
+    let d = drag(&s);
+    // Glauert & Lighthill's thick layer, halfway down, at the slip *Sarsia*'s swim gives
+    // its four tentacles: several times the Stokes limit, whose layer spans the length.
+    let speed = 0.03;
+    let xi = 4.0 * nu * (0.5 * length) / (speed * a * a);
+    let layer = 4.0 * std::f32::consts::PI * mu / (xi.ln() - 0.5772157);
+    let one = d.along_one(speed);
+    assert!((one / layer - 1.0).abs() < 1e-4, "{one} against {layer}");
+    assert!(
+        one > 3.0 * stokes_along,
+        "{one} against Stokes' {stokes_along}"
+    );
+    // Slower, the layer thickens towards the length and the drag falls to Stokes', never
+    // below it; it never falls as the slip quickens.
+    let speeds = [1e-7, 1e-5, 1e-3, 0.003, 0.01, 0.03, 0.1, 0.3];
+    let along: Vec<f32> = speeds.iter().map(|&u| d.along_one(u)).collect();
+    assert!(along.windows(2).all(|w| w[1] >= w[0]), "{along:?}");
+    assert!((along[0] / stokes_along - 1.0).abs() < 1e-4, "{along:?}");
+    // Four tentacles a bell's width apart are apart: each drags its own layer, but for
+    // the share of the gap between them its layers span (a twelfth), where the fringe
+    // slides as a sheet.
+    let per_point = d.at(speed) / d.per_length(speed);
+    let gap = std::f32::consts::PI * s.diameter / s.tentacle_count as f32 - 2.0 * a;
+    let sheet = (nu * length / speed).sqrt() / gap;
+    assert!((0.05..0.15).contains(&sheet), "{sheet}");
+    let blend = sheet * stokes_along + (1.0 - sheet) * one;
+    let along_fringe = d.at_angle(speed, 1.0) / per_point;
+    assert!(
+        (along_fringe / blend - 1.0).abs() < 1e-4,
+        "{along_fringe} against {blend}"
+    );
+    // As the gaps close the drag along falls continuously to the sheet's, and a fringe
+    // whose layers span its gaps (the moon jelly's two hundred) drags the sheet's alone.
+    let along_with = |count: u32| {
+        let s = Species {
+            tentacle_count: count,
+            ..Species::sarsia()
+        };
+        let d = drag(&s);
+        d.at_angle(speed, 1.0) / d.at(speed)
+    };
+    let ratios: Vec<f32> = [4, 16, 64, 128, 256, 1024].map(along_with).to_vec();
+    assert!(ratios.windows(2).all(|w| w[1] <= w[0]), "{ratios:?}");
+    let sheet = stokes_along / d.per_length(speed);
+    assert!(
+        (ratios[5] / sheet - 1.0).abs() < 1e-4,
+        "{ratios:?} against {sheet}"
+    );
+    let moon = drag(&Species::aurelia());
+    let moon_stokes = {
+        let m = Species::aurelia();
+        2.0 * std::f32::consts::PI * m.viscosity
+            / ((m.tentacle_length / m.tentacle_radius).ln() + 0.5)
+    };
+    let moon_along = moon.at_angle(0.01, 1.0) / (moon.at(0.01) / moon.per_length(0.01));
+    assert!(
+        (moon_along / moon_stokes - 1.0).abs() < 1e-4,
+        "{moon_along} against {moon_stokes}"
+    );
+}
+
+#[test]
 fn the_papers_curtain_drags_a_dense_fringe_as_much_along_as_across() {
     use super::depth::Depth;
     use super::tentacle::TentacleDrag;
