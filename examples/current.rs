@@ -158,26 +158,7 @@ fn follow_each(world: &mut World, row: &[Entity], size: UVec2) {
     }
     for (k, &jellyfish) in row.iter().enumerate() {
         world.spawn((
-            Camera3d::default(),
-            Camera {
-                order: k as isize,
-                clear_color: if k == 0 {
-                    ClearColorConfig::Custom(Color::srgb(0.01, 0.03, 0.07))
-                } else {
-                    ClearColorConfig::None
-                },
-                viewport: Some(bevy::camera::Viewport {
-                    physical_position: UVec2::new(k as u32 * cell.x, 0),
-                    physical_size: cell,
-                    ..default()
-                }),
-                ..default()
-            },
-            AmbientLight {
-                brightness: 300.0,
-                ..default()
-            },
-            target.clone(),
+            screenshot::panel_camera(k, cell, target.clone(), 300.0),
             Follow(jellyfish),
             Transform::default(),
         ));

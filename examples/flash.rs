@@ -135,26 +135,7 @@ fn panels(world: &mut World, row: &[Entity], size: UVec2) {
     for k in 0..row.len() {
         let aim = Vec3::new((k as f32 - 2.0) * APART, 0.6, 0.0);
         world.spawn((
-            Camera3d::default(),
-            Camera {
-                order: k as isize,
-                clear_color: if k == 0 {
-                    ClearColorConfig::Custom(Color::srgb(0.01, 0.03, 0.07))
-                } else {
-                    ClearColorConfig::None
-                },
-                viewport: Some(bevy::camera::Viewport {
-                    physical_position: UVec2::new(k as u32 * cell.x, 0),
-                    physical_size: cell,
-                    ..default()
-                }),
-                ..default()
-            },
-            AmbientLight {
-                brightness: 200.0,
-                ..default()
-            },
-            target.clone(),
+            screenshot::panel_camera(k, cell, target.clone(), 200.0),
             Aim(aim),
             Transform::default(),
         ));

@@ -23,6 +23,34 @@ use bevy::{
 use std::path::Path;
 use std::time::Duration;
 
+/// A camera drawing the `k`-th of a row of panels `cell` wide side by side into `target`
+/// (the first clears the picture, the others draw over it), in ambient light of
+/// `brightness`: the examples that show jellyfish one to a panel.
+pub fn panel_camera(k: usize, cell: UVec2, target: RenderTarget, brightness: f32) -> impl Bundle {
+    (
+        Camera3d::default(),
+        Camera {
+            order: k as isize,
+            clear_color: if k == 0 {
+                ClearColorConfig::Custom(Color::srgb(0.01, 0.03, 0.07))
+            } else {
+                ClearColorConfig::None
+            },
+            viewport: Some(bevy::camera::Viewport {
+                physical_position: UVec2::new(k as u32 * cell.x, 0),
+                physical_size: cell,
+                ..default()
+            }),
+            ..default()
+        },
+        AmbientLight {
+            brightness,
+            ..default()
+        },
+        target,
+    )
+}
+
 /// Why no picture can be rendered here.
 #[derive(Debug)]
 pub struct NoAdapter(pub String);
