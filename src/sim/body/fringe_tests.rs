@@ -193,7 +193,12 @@ fn a_tentacle_on_its_own_drags_the_layer_it_grows_along_its_length() {
     let s = Species::sarsia();
     let (a, length) = (s.tentacle_radius, s.tentacle_length);
     let (mu, nu) = (s.viscosity, s.kinematic_viscosity());
-    let stokes_along = 2.0 * std::f32::consts::PI * mu / ((length / a).ln() + 0.5);
+    // Slender-body Stokes drag's tangential half, a metre of one tentacle.
+    let stokes_along_of = |s: &Species| {
+        2.0 * std::f32::consts::PI * s.viscosity
+            / ((s.tentacle_length / s.tentacle_radius).ln() + 0.5)
+    };
+    let stokes_along = stokes_along_of(&s);
     let d = drag(&s);
     // Glauert & Lighthill's thick layer, halfway down, at the slip *Sarsia*'s swim gives
     // its four tentacles: several times the Stokes limit, whose layer spans the length.
@@ -237,17 +242,13 @@ fn a_tentacle_on_its_own_drags_the_layer_it_grows_along_its_length() {
     };
     let ratios: Vec<f32> = [4, 16, 64, 128, 256, 1024].map(along_with).to_vec();
     assert!(ratios.windows(2).all(|w| w[1] <= w[0]), "{ratios:?}");
-    let sheet = stokes_along / d.per_length(speed);
+    let sheets = stokes_along / d.per_length(speed);
     assert!(
-        (ratios[5] / sheet - 1.0).abs() < 1e-4,
-        "{ratios:?} against {sheet}"
+        (ratios[5] / sheets - 1.0).abs() < 1e-4,
+        "{ratios:?} against {sheets}"
     );
     let moon = drag(&Species::aurelia());
-    let moon_stokes = {
-        let m = Species::aurelia();
-        2.0 * std::f32::consts::PI * m.viscosity
-            / ((m.tentacle_length / m.tentacle_radius).ln() + 0.5)
-    };
+    let moon_stokes = stokes_along_of(&Species::aurelia());
     let moon_along = moon.at_angle(0.01, 1.0) / (moon.at(0.01) / moon.per_length(0.01));
     assert!(
         (moon_along / moon_stokes - 1.0).abs() < 1e-4,

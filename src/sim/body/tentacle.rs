@@ -90,25 +90,16 @@ impl TentacleDrag {
     pub(crate) fn at_angle(&self, speed: f32, along: f32) -> f32 {
         let across = self.per_length(speed);
         let isolated = (0.5 * self.stokes).min(across);
+        // How many times the gap between neighbours the layer each drags is thick.
+        let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
+        let spans = layer / self.gap.max(1e-9);
         let tangential = match self.law {
+            FringeDrag::Filaments if spans >= 1.0 || spans.is_nan() => isolated,
             FringeDrag::Filaments => {
-                let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
-                // The share of the gaps the layers span (no gap: all, `min` keeps the 1).
-                let sheet = (layer / self.gap.max(1e-9)).min(1.0);
-                if sheet >= 1.0 {
-                    isolated
-                } else {
-                    sheet * isolated + (1.0 - sheet) * self.along_one(speed).min(across)
-                }
+                spans * isolated + (1.0 - spans) * self.along_one(speed).min(across)
             }
-            FringeDrag::Curtain => {
-                let layer = (self.kinematic_viscosity * self.length / speed.max(1e-9)).sqrt();
-                let sheet = layer / self.gap.max(1e-9);
-                if sheet >= 1.0 || sheet.is_nan() {
-                    return self.at(speed);
-                }
-                sheet * across + (1.0 - sheet) * isolated
-            }
+            FringeDrag::Curtain if spans >= 1.0 || spans.is_nan() => return self.at(speed),
+            FringeDrag::Curtain => spans * across + (1.0 - spans) * isolated,
         };
         let along = along.clamp(0.0, 1.0);
         (((1.0 - along) * across + along * tangential) * self.length_per_point).max(1e-9)
