@@ -1,13 +1,15 @@
 //! The paper's Fig. 9 rendered offscreen: rows expanded (rest) and contracted, columns plain
 //! disc extrapolation, structural, compression, unstructured, and all of the paper's
-//! variation together (`Species::with_paper_variations`); the last column is the shipped
-//! moon jelly's smoother surface.
+//! variation together (`Species::with_paper_variations`), each on the paper's dome
+//! (`Species::paper`); the last column is the shipped moon jelly, its saucer and its
+//! smoother surface.
 //!
 //! `cargo run --release --features examples --example variations -- --out variations.png [--elevation 22]` (degrees the
 //! camera looks down; negative looks up into the subumbrella).
 //! Headless: no window; with no GPU it runs on Mesa's software Vulkan (`mesa-vulkan-drivers`,
 //! set `XDG_RUNTIME_DIR` to quiet it). The slices are hand-made ([`SliceOutline`]): the
-//! contracted row pulls opposite pairs towards the axis, to 56% of the rest span at the margin.
+//! contracted row pulls opposite pairs towards the axis, to its `contraction_ratio` of the rest
+//! span at the margin.
 
 #[path = "common/offscreen.rs"]
 mod screenshot;
@@ -63,10 +65,10 @@ fn arg(name: &str) -> Option<String> {
     )
 }
 
-/// The five columns of Fig. 9 (the species with only the named variation of the paper
-/// left on), then the shipped species as it is.
+/// The five columns of Fig. 9 (the paper's model with only the named variation of the
+/// paper left on), then the shipped moon jelly as it is.
 fn columns() -> [(&'static str, Species); 6] {
-    let all = Species::aurelia().with_paper_variations();
+    let all = Species::paper().with_paper_variations();
     let plain = Species {
         structural_scale: 0.0,
         compression_scale: 0.0,
@@ -102,15 +104,8 @@ fn columns() -> [(&'static str, Species); 6] {
 }
 
 fn spawn_scene(world: &mut World, target: RenderTarget, elevation: f32) {
-    let species = Species::aurelia();
-    let rows = [
-        ("expanded", SliceOutline::rest(&species, 25, 12), 0.95),
-        (
-            "contracted",
-            SliceOutline::contracted(&species, 25, 12, 1.0),
-            -1.05,
-        ),
-    ];
+    // Each column's own bell: the paper's dome, and last the moon jelly's saucer.
+    let rows = [("expanded", 0.0, 0.95), ("contracted", 1.0, -1.05)];
     let bell = world
         .resource_mut::<Assets<StandardMaterial>>()
         .add(StandardMaterial {
@@ -126,12 +121,13 @@ fn spawn_scene(world: &mut World, target: RenderTarget, elevation: f32) {
             perceptual_roughness: 0.7,
             ..default()
         });
-    for (row, slice, y) in &rows {
+    for (row, amount, y) in rows {
         for (col, (name, sp)) in columns().iter().enumerate() {
+            let slice = SliceOutline::contracted(sp, 25, 12, amount);
             let jelly = JellyMesh::from_slice(&slice.view(), sp, SEED, 0.0)
                 .unwrap_or_else(|e| panic!("{row}/{name}: {e}"));
             let x = (col as f32 - 2.5) * 1.45;
-            let at = Transform::from_xyz(x, *y, 0.0).with_scale(Vec3::splat(SCALE));
+            let at = Transform::from_xyz(x, y, 0.0).with_scale(Vec3::splat(SCALE));
             for (buffers, material) in [(&jelly.umbrella, &bell), (&jelly.tentacles, &tentacle)] {
                 let mesh = world.resource_mut::<Assets<Mesh>>().add(to_mesh(buffers));
                 world.spawn((Mesh3d(mesh), MeshMaterial3d(material.clone()), at));
