@@ -70,33 +70,56 @@ pub fn value<'a>(args: &'a [String], name: &str) -> Option<&'a String> {
         .and_then(|i| args.get(i + 1))
 }
 
-/// The `--set field=value` pairs among `args` (values in RON).
+/// The `--set field=value` pairs among `args` (values in RON); a `--set` without a
+/// `field=value` after it ends the program with an error saying so.
 pub fn overrides(args: &[String]) -> Vec<(String, String)> {
-    args.windows(2)
-        .filter(|w| w[0] == "--set")
-        .filter_map(|w| {
-            w[1].split_once('=')
-                .map(|(k, v)| (k.to_string(), v.to_string()))
+    args.iter()
+        .enumerate()
+        .filter(|(_, a)| *a == "--set")
+        .map(|(i, _)| {
+            let pair = args.get(i + 1).and_then(|a| a.split_once('='));
+            let Some((k, v)) = pair else {
+                refuse("--set needs field=value after it (e.g. --set grid_resolution=90)")
+            };
+            (k.to_string(), v.to_string())
         })
         .collect()
 }
 
-/// `species` with `overrides` applied through its RON text; a bad field or value panics
-/// with the species' own error naming it.
+/// `species` with `overrides` applied through its RON text. A field the species does not
+/// have, or a value it rejects, ends the program with the species' own error naming it,
+/// never a silent default.
 pub fn with_overrides(species: Species, overrides: &[(String, String)]) -> Species {
     if overrides.is_empty() {
         return species;
     }
     let text = species.to_ron().expect("a species writes as RON");
+    if let Some((k, _)) = overrides
+        .iter()
+        .find(|(k, _)| !text.lines().any(|line| field(line) == k))
+    {
+        refuse(&format!("--set: a species has no field `{k}`"));
+    }
     let lines: Vec<String> = text
         .lines()
-        .map(|line| {
-            let key = line.trim_start().split(':').next().unwrap_or("");
-            match overrides.iter().find(|(k, _)| k == key) {
+        .map(
+            |line| match overrides.iter().find(|(k, _)| k == field(line)) {
                 Some((k, v)) => format!("    {k}: {v},"),
                 None => line.to_string(),
-            }
-        })
+            },
+        )
         .collect();
-    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| panic!("--set: {e}"))
+    Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| refuse(&format!("--set: {e}")))
+}
+
+/// The field a line of a species' RON text sets ("" for a bracket).
+fn field(line: &str) -> &str {
+    line.trim_start().split(':').next().unwrap_or("")
+}
+
+/// Ends the program on bad input with `message` and exit status 2, as a command-line tool
+/// does, instead of a panic's backtrace.
+fn refuse(message: &str) -> ! {
+    eprintln!("{message}");
+    std::process::exit(2)
 }
