@@ -93,7 +93,10 @@ pub fn with_overrides(species: Species, overrides: &[(String, String)]) -> Speci
     if overrides.is_empty() {
         return species;
     }
-    let text = species.to_ron().expect("a species writes as RON");
+    // One line a field: below the top level nothing is pretty-printed, so a colour's
+    // tuple stays on its field's line and only the species' own fields start a line.
+    let pretty = ron::ser::PrettyConfig::default().depth_limit(1);
+    let text = ron::ser::to_string_pretty(&species, pretty).expect("a species writes as RON");
     if let Some((k, _)) = overrides
         .iter()
         .find(|(k, _)| !text.lines().any(|line| field(line) == k))
@@ -112,9 +115,13 @@ pub fn with_overrides(species: Species, overrides: &[(String, String)]) -> Speci
     Species::from_ron(&lines.join("\n")).unwrap_or_else(|e| refuse(&format!("--set: {e}")))
 }
 
-/// The field a line of a species' RON text sets ("" for a bracket).
+/// The field a line of a species' RON text sets: a line at the first indent, `name:`
+/// ("" for the brackets).
 fn field(line: &str) -> &str {
-    line.trim_start().split(':').next().unwrap_or("")
+    line.strip_prefix("    ")
+        .filter(|rest| !rest.starts_with(' '))
+        .and_then(|rest| rest.split_once(':'))
+        .map_or("", |(name, _)| name)
 }
 
 /// Ends the program on bad input with `message` and exit status 2, as a command-line tool
