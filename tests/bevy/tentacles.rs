@@ -4,18 +4,15 @@
 //! into frames, and trail at every level of detail. The oral arms' guides trail too, and
 //! never pass through the bell's wall.
 
-use crate::common::app::Headless;
+use crate::common::app::{Headless, spawn};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     AmbientWater, DetailLevels, JellyfishSlice, Resting, TentacleGuides, Tier,
 };
 use bevy_jellyfish::sim::guides::GUIDE_NODES;
-use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
+use bevy_jellyfish::{JellyfishSettings, Species};
 use std::time::Duration;
-
-/// World units per metre: the aquarium's scale.
-const SCALE: f32 = 30.0;
 
 fn app() -> App {
     Headless::default().build(|_| {})
@@ -38,20 +35,6 @@ fn long_fringe() -> Species {
         tentacle_count: 16,
         ..Species::paper()
     }
-}
-
-fn spawn(app: &mut App, species: &Species, at: Vec3, extra: impl Bundle) -> Entity {
-    let h = app
-        .world_mut()
-        .resource_mut::<Assets<Species>>()
-        .add(species.clone());
-    app.world_mut()
-        .spawn((
-            Jellyfish::new(h).with_phase(0.0).with_seed(3),
-            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
-            extra,
-        ))
-        .id()
 }
 
 fn guides(app: &App, e: Entity) -> &TentacleGuides {

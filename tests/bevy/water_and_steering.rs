@@ -3,19 +3,16 @@
 //! during strokes only, and all of it replays bit for bit, whatever order the jellyfish
 //! are met in.
 
-use crate::common::app::Headless;
+use crate::common::app::{Headless, SCALE, spawn};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_jellyfish::Species;
 use bevy_jellyfish::plugin::{
     AmbientWater, DetailLevels, JellyfishSettings, JellyfishSlice, Resting, Steering, SwimMotion,
     TankWater, Tier,
 };
 use bevy_jellyfish::sim::tank::TankFluid;
-use bevy_jellyfish::{Jellyfish, Species};
 use std::time::Duration;
-
-/// World units per metre: the aquarium's scale (a 40 mm bell is 1.2 units across).
-const SCALE: f32 = 30.0;
 
 fn app() -> App {
     Headless::default().build(|_| {})
@@ -27,20 +24,6 @@ fn species() -> Species {
         tentacle_count: 8,
         ..Species::aurelia()
     }
-}
-
-fn spawn(app: &mut App, species: &Species, at: Vec3, extra: impl Bundle) -> Entity {
-    let h = app
-        .world_mut()
-        .resource_mut::<Assets<Species>>()
-        .add(species.clone());
-    app.world_mut()
-        .spawn((
-            Jellyfish::new(h).with_phase(0.0).with_seed(3),
-            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
-            extra,
-        ))
-        .id()
 }
 
 fn run_for(app: &mut App, seconds: f32) {

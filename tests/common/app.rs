@@ -5,7 +5,7 @@ use bevy::asset::AssetPlugin;
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_jellyfish::{JellyfishPlugin, JellyfishSettings};
+use bevy_jellyfish::{Jellyfish, JellyfishPlugin, JellyfishSettings, Species};
 use std::time::Duration;
 
 /// How to build the app; `Headless::default()` is 60 Hz with light meshes.
@@ -111,4 +111,23 @@ pub fn ambiguities_of_ours(world: &mut World, skip: &[&str]) -> Vec<String> {
     }
     world.insert_resource(schedules);
     found
+}
+
+/// World units per metre: the aquarium's scale (a 40 mm bell is 1.2 units across).
+pub const SCALE: f32 = 30.0;
+
+/// Spawns `species` at `at` with `extra` components, at phase 0 and seed 3, at the
+/// aquarium's scale: one jellyfish as the plugin tests place it.
+pub fn spawn(app: &mut App, species: &Species, at: Vec3, extra: impl Bundle) -> Entity {
+    let h = app
+        .world_mut()
+        .resource_mut::<Assets<Species>>()
+        .add(species.clone());
+    app.world_mut()
+        .spawn((
+            Jellyfish::new(h).with_phase(0.0).with_seed(3),
+            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
+            extra,
+        ))
+        .id()
 }
