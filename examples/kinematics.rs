@@ -9,7 +9,8 @@
 //! at rest as a video measures it) and height, and the
 //! subumbrella's depth over its width (the cavity alone, as `SliceSim::bell_points` gives
 //! it); then each shipped species at other sizes, every length scaled and the pulse rate
-//! set to the animal's at that size, with its refill's slowest speed too; then how far the
+//! set to the animal's at that size, with its refill's slowest speed too, and the smallest
+//! size at which each still glides while it refills; then how far the
 //! moon jelly's stroke stays from the record's (root mean square). Writes
 //! `kinematics.csv` and `kinematics.png` into `--out` (default `docs/`).
 //!
@@ -188,6 +189,49 @@ fn slowest_in_refill(species: &Species, samples: &[Sample], stroke: u32) -> f32 
         .fold(f32::MAX, f32::min)
 }
 
+/// The smallest size at which each species, every length scaled and beating at its
+/// animal's rate for that size, still glides forwards while its bell refills once under
+/// way: smaller, the water's viscosity takes the glide its contraction gave and the
+/// refill draws it back. Bisected on the scale's logarithm between an eighth and one
+/// (the shipped size, which glides), to about 2%.
+fn glide_thresholds(species: &[&Species], strokes: u32, finer: u32, under_way: u32) {
+    let glides = |scales: &[f32]| -> Vec<bool> {
+        let runs = species
+            .iter()
+            .zip(scales)
+            .map(|(s, &k)| resized(s, k))
+            .collect();
+        from_rest_all(runs, strokes, finer)
+            .iter()
+            .map(|(s, samples)| slowest_in_refill(s, samples, under_way) > 0.0)
+            .collect()
+    };
+    let mut bounds: Vec<(f32, f32)> = vec![(0.125, 1.0); species.len()];
+    let at_own_size = glides(&vec![1.0; species.len()]);
+    for _ in 0..7 {
+        let middle: Vec<f32> = bounds.iter().map(|(lo, hi)| (lo * hi).sqrt()).collect();
+        for ((b, m), g) in bounds.iter_mut().zip(&middle).zip(glides(&middle)) {
+            *b = if g { (b.0, *m) } else { (*m, b.1) };
+        }
+    }
+    println!("\n| species | smallest size that glides while it refills (mm) | its own size (mm) |");
+    println!("|---|---|---|");
+    for ((s, (lo, hi)), own) in species.iter().zip(&bounds).zip(at_own_size) {
+        let size = if !own {
+            "none: drawn back at its own size".to_string()
+        } else if *lo <= 0.125 {
+            format!("below {:.1}", 0.125 * s.diameter * 1000.0)
+        } else {
+            format!(
+                "{:.1}–{:.1}",
+                lo * s.diameter * 1000.0,
+                hi * s.diameter * 1000.0
+            )
+        };
+        println!("| {} | {size} | {:.0} |", s.name, s.diameter * 1000.0);
+    }
+}
+
 /// The record: (phase, margin, widest, height), lengths over the rest diameter.
 fn record(path: &Path) -> Vec<(f32, f32, f32, f32)> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -321,6 +365,8 @@ fn main() {
             steady * s.diameter * s.contraction_frequency * 1000.0
         );
     }
+
+    glide_thresholds(&[&aurelia, &aequorea, &sarsia], strokes, finer, under_way);
 
     let rec =
         record(&Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/records/aurelia_dabiri2011.csv"));
