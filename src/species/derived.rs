@@ -61,6 +61,9 @@ impl Species {
     /// the same 2 mm hinge), and beating at its animal's own rate for that size
     /// ([`Self::natural_pulse_rate`]). Materials, water, shares and the box in diameters
     /// stay as they are. Not validated: a size outside the limits is the caller's to check.
+    /// Shrunk far enough, the water's viscosity takes the glide: the shipped species are
+    /// drawn back while they refill below about 14.5, 26.4 and 6.3 mm (moon jelly,
+    /// *Aequorea*, *Sarsia*; `examples/kinematics.rs`, `docs/physics.md`).
     pub fn resized(&self, diameter: f32) -> Species {
         let scale = diameter / self.diameter;
         let grown = Species {
