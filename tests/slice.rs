@@ -58,6 +58,16 @@ fn three_sizes(s: &Species) -> [Species; 3] {
     [s.resized(0.5 * d), s.clone(), s.resized(2.0 * d)]
 }
 
+/// Each species' speed under way, m/s, from its `stroke_and_refill` run: the distance a
+/// stroke times its diameter and its pulse rate.
+fn speeds(species: &[Species], runs: &[(f32, f32, u32)]) -> Vec<f32> {
+    species
+        .iter()
+        .zip(runs)
+        .map(|(s, (stroke, ..))| stroke * s.diameter * s.contraction_frequency)
+        .collect()
+}
+
 /// A species' name and its diameter in millimetres, as "Sarsia 8 mm".
 fn sized(s: &Species) -> String {
     format!("{} {:.0} mm", s.name, 1000.0 * s.diameter)
@@ -1551,11 +1561,7 @@ fn a_rower_rows_alike_at_every_size() {
             .iter()
             .map(|r| r.0)
             .collect();
-        let speeds: Vec<f32> = runs
-            .iter()
-            .zip(&sized)
-            .map(|((stroke, ..), s)| stroke * s.diameter * s.contraction_frequency)
-            .collect();
+        let speeds = speeds(&sized, &runs);
         for ((s, (stroke, refill, _)), speed) in sized.iter().zip(&runs).zip(&speeds) {
             println!(
                 "{} at {:.0} mm, {:.2} Hz: {stroke:.3} D a stroke, {:.1} mm/s, slowest {refill:+.3} D/s refilling",
@@ -1608,11 +1614,7 @@ fn the_jetter_glides_while_it_refills_from_half_to_twice_its_size() {
     let sarsia = Species::sarsia();
     let sizes = three_sizes(&sarsia);
     let runs = in_parallel(&sizes, stroke_and_refill);
-    let speeds: Vec<f32> = runs
-        .iter()
-        .zip(&sizes)
-        .map(|((stroke, ..), s)| stroke * s.diameter * s.contraction_frequency)
-        .collect();
+    let speeds = speeds(&sizes, &runs);
     for ((s, (stroke, refill, restarts)), speed) in sizes.iter().zip(&runs).zip(&speeds) {
         println!(
             "{}: {stroke:.3} D a stroke, {:.1} mm/s, slowest {refill:+.3} D/s refilling, {restarts} restarts",

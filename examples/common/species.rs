@@ -1,7 +1,7 @@
 //! The shipped species files: read from `assets/species/` so that an edited file shows in
 //! the core examples' numbers, and checked before a windowed example starts so that a
 //! missing one is said at once; and the `--set field=value` overrides the core examples
-//! take. Shared by the examples (`#[path]`-included).
+//! take. Shared by the examples and the test binaries (`#[path]`-included).
 #![allow(dead_code)] // each example that includes it uses a part
 
 use bevy_jellyfish::Species;
