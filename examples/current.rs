@@ -149,19 +149,9 @@ fn hold(offscreen: &mut Offscreen, row: &[Entity]) {
 struct Follow(Entity);
 
 fn follow_each(world: &mut World, row: &[Entity], size: UVec2) {
-    let cell = UVec2::new(size.x / row.len() as u32, size.y);
-    let target = world.resource::<OffscreenTarget>().0.clone();
-    let mut cameras = world.query_filtered::<Entity, With<Camera3d>>();
-    let first: Vec<Entity> = cameras.iter(world).collect();
-    for e in first {
-        world.despawn(e);
-    }
-    for (k, &jellyfish) in row.iter().enumerate() {
-        world.spawn((
-            screenshot::panel_camera(k, cell, target.clone(), 300.0),
-            Follow(jellyfish),
-            Transform::default(),
-        ));
+    let cameras = screenshot::panel_cameras(world, row.len(), size, 300.0);
+    for (camera, &jellyfish) in cameras.into_iter().zip(row) {
+        world.entity_mut(camera).insert(Follow(jellyfish));
     }
     world.schedule_scope(Update, |_, schedule| {
         schedule.add_systems(follow);

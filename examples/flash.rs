@@ -13,7 +13,7 @@ mod screenshot;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::prelude::*;
-use screenshot::{Offscreen, OffscreenTarget};
+use screenshot::Offscreen;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -118,13 +118,7 @@ fn main() {
 
 /// A panel per jellyfish, side by side, each camera aimed where its jellyfish started.
 fn panels(world: &mut World, row: &[Entity], size: UVec2) {
-    let cell = UVec2::new(size.x / row.len() as u32, size.y);
-    let target = world.resource::<OffscreenTarget>().0.clone();
-    let mut cameras = world.query_filtered::<Entity, With<Camera3d>>();
-    let first: Vec<Entity> = cameras.iter(world).collect();
-    for e in first {
-        world.despawn(e);
-    }
+    let cameras = screenshot::panel_cameras(world, row.len(), size, 200.0);
     world.spawn((
         DirectionalLight {
             illuminance: 4000.0,
@@ -132,13 +126,9 @@ fn panels(world: &mut World, row: &[Entity], size: UVec2) {
         },
         Transform::from_xyz(1.0, 3.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    for k in 0..row.len() {
+    for (k, camera) in cameras.into_iter().enumerate() {
         let aim = Vec3::new((k as f32 - 2.0) * APART, 0.6, 0.0);
-        world.spawn((
-            screenshot::panel_camera(k, cell, target.clone(), 200.0),
-            Aim(aim),
-            Transform::default(),
-        ));
+        world.entity_mut(camera).insert(Aim(aim));
     }
     world.schedule_scope(Update, |_, schedule| {
         schedule.add_systems(aim_cameras);

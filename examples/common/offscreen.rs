@@ -23,10 +23,29 @@ use bevy::{
 use std::path::Path;
 use std::time::Duration;
 
-/// A camera drawing the `k`-th of a row of panels `cell` wide side by side into `target`
-/// (the first clears the picture, the others draw over it), in ambient light of
-/// `brightness`: the examples that show jellyfish one to a panel.
-pub fn panel_camera(k: usize, cell: UVec2, target: RenderTarget, brightness: f32) -> impl Bundle {
+/// Replaces the scene's cameras with a row of `count` panels side by side across a
+/// picture `size` wide, each its own camera in ambient light of `brightness` (the first
+/// clears the picture, the others draw over it), and returns them in order so the
+/// example can aim each at its jellyfish.
+pub fn panel_cameras(world: &mut World, count: usize, size: UVec2, brightness: f32) -> Vec<Entity> {
+    let cell = UVec2::new(size.x / count.max(1) as u32, size.y);
+    let target = world.resource::<OffscreenTarget>().0.clone();
+    let mut cameras = world.query_filtered::<Entity, With<Camera3d>>();
+    let old: Vec<Entity> = cameras.iter(world).collect();
+    for e in old {
+        world.despawn(e);
+    }
+    (0..count)
+        .map(|k| {
+            world
+                .spawn(panel_camera(k, cell, target.clone(), brightness))
+                .id()
+        })
+        .collect()
+}
+
+/// The `k`-th camera of [`panel_cameras`], `cell` wide, drawing into `target`.
+fn panel_camera(k: usize, cell: UVec2, target: RenderTarget, brightness: f32) -> impl Bundle {
     (
         Camera3d::default(),
         Camera {
@@ -48,6 +67,7 @@ pub fn panel_camera(k: usize, cell: UVec2, target: RenderTarget, brightness: f32
             ..default()
         },
         target,
+        Transform::default(),
     )
 }
 
