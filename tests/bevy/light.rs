@@ -4,17 +4,14 @@
 //! bit for bit however time is split into frames; a disturbance that is not finite is
 //! refused.
 
-use crate::common::app::Headless;
+use crate::common::app::{Headless, SCALE};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_jellyfish::plugin::{
     DetailLevels, Disturbance, ECHO_SHARE, Flash, JellyfishSlice, SwimMotion, Tier,
 };
-use bevy_jellyfish::{Jellyfish, JellyfishSettings, Species};
+use bevy_jellyfish::{JellyfishSettings, Species};
 use std::time::Duration;
-
-/// World units per metre: the aquarium's scale.
-const SCALE: f32 = 30.0;
 
 /// The crystal jelly with a light fringe for the debug build.
 fn species() -> Species {
@@ -37,17 +34,9 @@ fn app(frame: f64) -> App {
     .build(|_| {})
 }
 
+/// The crystal jelly at `at`, as the plugin tests place one.
 fn spawn(app: &mut App, at: Vec3) -> Entity {
-    let h = app
-        .world_mut()
-        .resource_mut::<Assets<Species>>()
-        .add(species());
-    app.world_mut()
-        .spawn((
-            Jellyfish::new(h).with_phase(0.0).with_seed(3),
-            Transform::from_translation(at).with_scale(Vec3::splat(SCALE)),
-        ))
-        .id()
+    crate::common::app::spawn(app, &species(), at, ())
 }
 
 fn slice(app: &App, e: Entity) -> &JellyfishSlice {
