@@ -14,7 +14,10 @@
 //! `--species` (the paper's model is `paper`) and `--geometry planar|axisymmetric` it
 //! runs only those, as a profiler wants.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|timestep|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...]`
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...]`
+//!
+//! `--sizes` runs each species resized to those multiples of its diameter, its pulse rate its
+//! animal's at each size (`Species::resized`).
 
 #[path = "common/species.rs"]
 mod common;
@@ -173,6 +176,29 @@ fn grids(species: &[Species], from: u32, to: u32) {
             .collect();
         let runs = parallel(jobs, |s| swim(s, 1.0 / 60.0, from, to));
         row(&format!("{} (G = {g})", s.name), &runs);
+    }
+}
+
+/// The paper's Fig. 5 finding on each species: its staggered release against every band
+/// letting go in unison.
+fn stagger(species: &[Species], from: u32, to: u32) {
+    println!("\n### Staggered against unison: swim per cycle (cycles {from}–{to}, 60 Hz frames)\n");
+    println!("| species | staggered | unison | gain |");
+    println!("|---|---|---|---|");
+    for s in species {
+        let unison = Species {
+            expansion_stagger: 0.0,
+            ..s.clone()
+        };
+        let runs = parallel(vec![s.clone(), unison], |s| swim(s, 1.0 / 60.0, from, to));
+        let (a, b) = (runs[0].mean(), runs[1].mean());
+        println!(
+            "| {} | {a:.3} ± {:.0}% | {b:.3} ± {:.0}% | {:+.0}% |",
+            s.name,
+            100.0 * runs[0].cv(),
+            100.0 * runs[1].cv(),
+            100.0 * (a / b - 1.0)
+        );
     }
 }
 
@@ -431,6 +457,7 @@ fn main() {
         .into_iter()
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
         .map(|s| with_overrides(s, &overrides))
+        .flat_map(|s| at_sizes(&s, &args))
         .collect();
     // The paper's findings (staggering, Reynolds numbers) are shown on the paper's model.
     let paper = with_overrides(Species::paper(), &overrides);
@@ -476,6 +503,9 @@ fn main() {
             .collect();
         fingerprint(&all, &geometries, flag("--to", 10));
     }
+    if matches!(which, "stagger") {
+        stagger(&species, from, to);
+    }
     if matches!(which, "timestep") {
         timestep(&species, from, to);
     }
@@ -488,6 +518,27 @@ fn main() {
     if matches!(which, "convergence" | "all") {
         convergence(&species, from, to);
     }
+}
+
+/// `s` resized (`Species::resized`: every length, and its animal's pulse rate at the size)
+/// to each multiple of its diameter that `--sizes 0.25,2,...` lists, named with its size;
+/// `s` itself without the flag.
+fn at_sizes(s: &Species, args: &[String]) -> Vec<Species> {
+    let Some(list) = common::value(args, "--sizes") else {
+        return vec![s.clone()];
+    };
+    list.split(',')
+        .map(|k| match k.trim().parse::<f32>() {
+            Ok(k) if k > 0.0 => Species {
+                name: format!("{} {:.1} mm", s.name, 1000.0 * k * s.diameter),
+                ..s.resized(k * s.diameter)
+            },
+            _ => {
+                eprintln!("numerics: --sizes takes positive multiples of the diameter, not {k:?}");
+                std::process::exit(2);
+            }
+        })
+        .collect()
 }
 
 /// A hash of each cycle's distance (every bit) in both geometries, and the cost, one
