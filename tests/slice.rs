@@ -1082,67 +1082,32 @@ fn bells_stay_whole_in_every_variant(geometry: SliceGeometry) {
 
 /// Eleven variants of `base`, each named.
 fn variants(base: &Species) -> Vec<(String, Species)> {
-    let named = |what: String, s: Species| (format!("{} {what}", base.name), s);
+    let named = |what: &str, s: Species| (format!("{} {what}", base.name), s);
+    let edited = |what: &str, edit: fn(&mut Species)| {
+        let mut s = base.clone();
+        edit(&mut s);
+        named(what, s)
+    };
     let mut out: Vec<_> = [0.25f32, 0.5, 2.0, 4.0]
         .into_iter()
-        .map(|k| named(format!("at {k}× its size"), base.resized(k * base.diameter)))
+        .map(|k| {
+            named(
+                &format!("at {k}× its size"),
+                base.resized(k * base.diameter),
+            )
+        })
         .collect();
-    let edits: [(&str, Species); 7] = [
-        (
-            "bare",
-            Species {
-                tentacle_count: 0,
-                ..base.clone()
-            },
-        ),
-        (
-            "with a fringe 3× as long",
-            Species {
-                tentacle_length: 3.0 * base.tentacle_length,
-                ..base.clone()
-            },
-        ),
-        (
-            "at half its rate",
-            Species {
-                contraction_frequency: 0.5 * base.contraction_frequency,
-                ..base.clone()
-            },
-        ),
-        (
-            "at twice its rate",
-            Species {
-                contraction_frequency: 2.0 * base.contraction_frequency,
-                ..base.clone()
-            },
-        ),
-        (
-            "half as stiff",
-            Species {
-                elastic_modulus: 0.5 * base.elastic_modulus,
-                ..base.clone()
-            },
-        ),
-        (
-            "twice as stiff",
-            Species {
-                elastic_modulus: 2.0 * base.elastic_modulus,
-                ..base.clone()
-            },
-        ),
-        (
-            "on a grid a quarter coarser",
-            Species {
-                grid_resolution: base.grid_resolution * 3 / 4,
-                ..base.clone()
-            },
-        ),
-    ];
-    out.extend(
-        edits
-            .into_iter()
-            .map(|(what, s)| named(what.to_string(), s)),
-    );
+    out.extend([
+        edited("bare", |s| s.tentacle_count = 0),
+        edited("with a fringe 3× as long", |s| s.tentacle_length *= 3.0),
+        edited("at half its rate", |s| s.contraction_frequency *= 0.5),
+        edited("at twice its rate", |s| s.contraction_frequency *= 2.0),
+        edited("half as stiff", |s| s.elastic_modulus *= 0.5),
+        edited("twice as stiff", |s| s.elastic_modulus *= 2.0),
+        edited("on a grid a quarter coarser", |s| {
+            s.grid_resolution = s.grid_resolution * 3 / 4
+        }),
+    ]);
     out
 }
 
