@@ -135,9 +135,10 @@ impl PoissonSolver {
 mod tests {
     use super::*;
 
-    /// The 5-point Laplacian the solver inverts: Neumann at the side walls and the top
-    /// (mirror ghost cells), Dirichlet at the bottom (odd ghost cells, φ = 0 on the face).
-    fn laplacian(phi: &[f32], n: usize, h: f32) -> Vec<f32> {
+    /// The 5-point Laplacian: Neumann at the side walls and the top (mirror ghost cells);
+    /// at the bottom the ghost cell is `bottom` times its neighbour: −1 for the channel's
+    /// open end (odd, φ = 0 on the face), +1 for the closed box's wall.
+    fn laplacian(phi: &[f32], n: usize, h: f32, bottom: f64) -> Vec<f32> {
         let at = |i: usize, j: usize| phi[j * n + i] as f64;
         let h = h as f64;
         let mut out = vec![0.0; n * n];
@@ -146,25 +147,7 @@ mod tests {
                 let c = at(i, j);
                 let left = if i > 0 { at(i - 1, j) } else { c };
                 let right = if i + 1 < n { at(i + 1, j) } else { c };
-                let below = if j > 0 { at(i, j - 1) } else { -c };
-                let above = if j + 1 < n { at(i, j + 1) } else { c };
-                out[j * n + i] = ((left + right + below + above - 4.0 * c) / (h * h)) as f32;
-            }
-        }
-        out
-    }
-
-    /// The closed box's Laplacian: Neumann (mirror ghost cells) on all four sides.
-    fn closed_laplacian(phi: &[f32], n: usize, h: f32) -> Vec<f32> {
-        let at = |i: usize, j: usize| phi[j * n + i] as f64;
-        let h = h as f64;
-        let mut out = vec![0.0; n * n];
-        for j in 0..n {
-            for i in 0..n {
-                let c = at(i, j);
-                let left = if i > 0 { at(i - 1, j) } else { c };
-                let right = if i + 1 < n { at(i + 1, j) } else { c };
-                let below = if j > 0 { at(i, j - 1) } else { c };
+                let below = if j > 0 { at(i, j - 1) } else { bottom * c };
                 let above = if j + 1 < n { at(i, j + 1) } else { c };
                 out[j * n + i] = ((left + right + below + above - 4.0 * c) / (h * h)) as f32;
             }
@@ -189,7 +172,7 @@ mod tests {
                         + 0.01 * (((k * 7919) % 101) as f32 / 101.0 - 0.5)
                 })
                 .collect();
-            let mut phi = closed_laplacian(&exact, n, h);
+            let mut phi = laplacian(&exact, n, h, 1.0);
             PoissonSolver::closed(n, h).solve(&mut phi);
             let mean = |f: &[f32]| f.iter().map(|&x| x as f64).sum::<f64>() / f.len() as f64;
             let (m_phi, m_exact) = (mean(&phi), mean(&exact));
@@ -218,7 +201,7 @@ mod tests {
                         + 0.01 * (((k * 7919) % 101) as f32 / 101.0 - 0.5)
                 })
                 .collect();
-            let mut phi = laplacian(&exact, n, h);
+            let mut phi = laplacian(&exact, n, h, -1.0);
             PoissonSolver::new(n, h).solve(&mut phi);
             let scale = exact.iter().fold(0.0f32, |m, r| m.max(r.abs()));
             let err = phi
