@@ -186,20 +186,27 @@ fn stagger(species: &[Species], from: u32, to: u32) {
     println!("| species | staggered | unison | gain |");
     println!("|---|---|---|---|");
     for s in species {
-        let unison = Species {
-            expansion_stagger: 0.0,
-            ..s.clone()
-        };
-        let runs = parallel(vec![s.clone(), unison], |s| swim(s, 1.0 / 60.0, from, to));
-        let (a, b) = (runs[0].mean(), runs[1].mean());
+        let [staggered, unison] = against_unison(s, from, to);
+        let (a, b) = (staggered.mean(), unison.mean());
         println!(
             "| {} | {a:.3} ± {:.0}% | {b:.3} ± {:.0}% | {:+.0}% |",
             s.name,
-            100.0 * runs[0].cv(),
-            100.0 * runs[1].cv(),
+            100.0 * staggered.cv(),
+            100.0 * unison.cv(),
             100.0 * (a / b - 1.0)
         );
     }
+}
+
+/// `s` as it is and with every band letting go in unison, side by side (60 Hz frames).
+fn against_unison(s: &Species, from: u32, to: u32) -> [Run; 2] {
+    let unison = Species {
+        expansion_stagger: 0.0,
+        ..s.clone()
+    };
+    let mut runs = parallel(vec![s.clone(), unison], |s| swim(s, 1.0 / 60.0, from, to));
+    let unison = runs.pop().expect("two runs");
+    [runs.pop().expect("two runs"), unison]
 }
 
 fn convergence(species: &[Species], from: u32, to: u32) {
@@ -365,12 +372,7 @@ fn distance_in(species: &Species, seconds: f32) -> f32 {
 }
 
 fn calibration(base: &Species) {
-    let from_to = |s: &Species| swim(s, 1.0 / 60.0, 20, 40);
-    let staggered = from_to(base);
-    let unison = from_to(&Species {
-        expansion_stagger: 0.0,
-        ..base.clone()
-    });
+    let [staggered, unison] = against_unison(base, 20, 40);
     println!("\n### Calibration ({})\n", base.name);
     println!(
         "- swim per cycle, cycles 20–40: staggered {:.3} (cv {:.1}%), unison {:.3} (cv {:.1}%): staggered {:+.0}%",
@@ -533,10 +535,9 @@ fn at_sizes(s: &Species, args: &[String]) -> Vec<Species> {
                 name: format!("{} {:.1} mm", s.name, 1000.0 * k * s.diameter),
                 ..s.resized(k * s.diameter)
             },
-            _ => {
-                eprintln!("numerics: --sizes takes positive multiples of the diameter, not {k:?}");
-                std::process::exit(2);
-            }
+            _ => common::refuse(&format!(
+                "numerics: --sizes takes positive multiples of the diameter, not {k:?}"
+            )),
         })
         .collect()
 }

@@ -126,7 +126,7 @@ fn field(line: &str) -> &str {
 
 /// Ends the program on bad input with `message` and exit status 2, as a command-line tool
 /// does, instead of a panic's backtrace.
-fn refuse(message: &str) -> ! {
+pub fn refuse(message: &str) -> ! {
     eprintln!("{message}");
     std::process::exit(2)
 }
