@@ -1,0 +1,126 @@
+//! The numerics tables of `docs/numerics.md`: how far a slice swims per cycle at different
+//! frame rates, grids (each puts the bell at another offset to the cells) and resolutions,
+//! for every shipped species.
+//!
+//! *Swim per cycle* is the mean distance per cycle in bell diameters over cycles 10–30;
+//! *spread* of a set of runs is (max − min) / mean; *cv* is the cycle-to-cycle coefficient
+//! of variation over the same cycles.
+//!
+//! `calibration` shows the paper's findings on [`Species::paper`].
+//!
+//! `fingerprint` runs every shipped species and the paper's model in both slice geometries
+//! for `--to` cycles and prints a hash of every cycle's distance, bit for bit, and the
+//! cost: a refactor meant to leave the physics alone must leave the hashes alone. With
+//! `--species` (the paper's model is `paper`) and `--geometry planar|axisymmetric` it
+//! runs only those, as a profiler wants.
+//!
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|strain|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...]`
+//!
+//! `--sizes` runs each species resized to those multiples of its diameter, its pulse rate its
+//! animal's at each size (`Species::resized`).
+
+mod calibration;
+#[path = "../common/species.rs"]
+mod common;
+mod fingerprint;
+mod run;
+mod strain;
+mod tables;
+
+use bevy_jellyfish::{SliceGeometry, Species};
+use calibration::calibration;
+use common::{overrides, shipped_species, with_overrides};
+use fingerprint::fingerprint;
+use tables::{convergence, crumples, frames, grids, stagger, timestep};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let flag = |name: &str, default: u32| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let (from, to) = (flag("--from", 10), flag("--to", 30));
+    let which = args.first().map(String::as_str).unwrap_or("all");
+    let overrides = overrides(&args);
+    let only: Option<&String> = args
+        .iter()
+        .position(|a| a == "--species")
+        .and_then(|i| args.get(i + 1));
+    let species: Vec<Species> = shipped_species()
+        .into_iter()
+        .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
+        .map(|s| with_overrides(s, &overrides))
+        .flat_map(|s| at_sizes(&s, &args))
+        .collect();
+    // The paper's findings (staggering, Reynolds numbers) are shown on the paper's model.
+    let paper = with_overrides(Species::paper(), &overrides);
+    if matches!(which, "frames" | "all") {
+        frames(&species, from, to);
+    }
+    if matches!(which, "grids" | "all") {
+        grids(&species, from, to);
+    }
+    if matches!(which, "series") {
+        tables::series(&species, flag("--to", 60));
+    }
+    if matches!(which, "fingerprint") {
+        let named = |flag: &str| {
+            args.iter()
+                .position(|a| a == flag)
+                .and_then(|i| args.get(i + 1))
+                .map(|v| v.to_ascii_lowercase())
+        };
+        let mut all = species.clone();
+        if only.is_none_or(|o| o.eq_ignore_ascii_case("paper")) {
+            all.push(paper.clone());
+        }
+        let geometries: Vec<SliceGeometry> = [SliceGeometry::Planar, SliceGeometry::Axisymmetric]
+            .into_iter()
+            .filter(|g| {
+                named("--geometry").is_none_or(|n| format!("{g:?}").to_ascii_lowercase() == n)
+            })
+            .collect();
+        fingerprint(&all, &geometries, flag("--to", 10));
+    }
+    if matches!(which, "stagger") {
+        stagger(&species, from, to);
+    }
+    if matches!(which, "timestep") {
+        timestep(&species, from, to);
+    }
+    if matches!(which, "strain") {
+        strain::by_phase(&species, from, to);
+    }
+    if matches!(which, "calibration") {
+        calibration(&paper);
+    }
+    if matches!(which, "crumples") {
+        crumples(&species, flag("--cycles", 300));
+    }
+    if matches!(which, "convergence" | "all") {
+        convergence(&species, from, to);
+    }
+}
+
+/// `s` resized (`Species::resized`: every length, and its animal's pulse rate at the size)
+/// to each multiple of its diameter that `--sizes 0.25,2,...` lists, named with its size;
+/// `s` itself without the flag.
+fn at_sizes(s: &Species, args: &[String]) -> Vec<Species> {
+    let Some(list) = common::value(args, "--sizes") else {
+        return vec![s.clone()];
+    };
+    list.split(',')
+        .map(|k| match k.trim().parse::<f32>() {
+            Ok(k) if k > 0.0 => Species {
+                name: format!("{} {:.1} mm", s.name, 1000.0 * k * s.diameter),
+                ..s.resized(k * s.diameter)
+            },
+            _ => common::refuse(&format!(
+                "numerics: --sizes takes positive multiples of the diameter, not {k:?}"
+            )),
+        })
+        .collect()
+}
