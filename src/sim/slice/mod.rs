@@ -324,9 +324,10 @@ impl SliceSim {
 
     /// How much longer the subumbrella is from margin to margin than at rest (0 at its
     /// rest length, 0.1 a tenth longer). The stroke's loads stretch the mesoglea by about
-    /// a percent; what more a slice shows is its step's: the water carries the points a
-    /// step before their springs' force reaches it, so the meridian gives by what one
-    /// step's flow stretches it (`docs/numerics.md`, "Time step").
+    /// a percent; what more a slice shows is its step's give: the wall's response to its
+    /// own forces through the water, which the implicit solve's one assumed mass a point
+    /// does not match mode by mode (`docs/numerics.md`, "Time step" and "The meridian
+    /// through a stroke, by phase").
     pub fn meridian_strain(&self) -> f32 {
         let length =
             |points: &[Vec2]| -> f32 { points.windows(2).map(|w| w[0].distance(w[1])).sum() };

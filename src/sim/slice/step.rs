@@ -14,7 +14,10 @@ use glam::Vec2;
 /// depth). The semi-implicit forces are stable for any stiffness while this stays below
 /// about 4/3 of the true value; spreading a point at half-cell spacing gives about 1 for
 /// the smooth modes, so 0.5 is safe and still settles a stiff spring within two or three
-/// steps.
+/// steps. Along the wall the water is two to four times more, but no one mass fits
+/// every mode: a tangential block twice as heavy takes a third of the meridian's give,
+/// four times as heavy rings (`docs/numerics.md`, "The meridian through a stroke, by
+/// phase").
 pub(super) const ADDED_MASS: f32 = 0.5;
 /// A fixed step is split in two (then four …) when the measured flow would cross more
 /// cells than this in it; the split depends only on the state, so it is the same every run.
