@@ -326,8 +326,9 @@ impl SliceSim {
     /// rest length, 0.1 a tenth longer). The stroke's loads stretch the mesoglea by about
     /// a percent; what more a slice shows is its step's give: the wall's response to its
     /// own forces through the water, which the implicit solve's one assumed mass a point
-    /// does not match mode by mode (`docs/numerics.md`, "Time step" and "The meridian
-    /// through a stroke, by phase").
+    /// does not match mode by mode; with the water's one-step response in the solve the
+    /// wall holds its length at any step (`docs/numerics.md`, "The meridian through a
+    /// stroke, by phase" and "A coupling that sees the water's response").
     pub fn meridian_strain(&self) -> f32 {
         let length =
             |points: &[Vec2]| -> f32 { points.windows(2).map(|w| w[0].distance(w[1])).sum() };
