@@ -36,19 +36,14 @@ use tables::{convergence, crumples, frames, grids, stagger, timestep};
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let flag = |name: &str, default: u32| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1))
+        common::value(&args, name)
             .and_then(|v| v.parse().ok())
             .unwrap_or(default)
     };
     let (from, to) = (flag("--from", 10), flag("--to", 30));
     let which = args.first().map(String::as_str).unwrap_or("all");
     let overrides = overrides(&args);
-    let only: Option<&String> = args
-        .iter()
-        .position(|a| a == "--species")
-        .and_then(|i| args.get(i + 1));
+    let only = common::value(&args, "--species");
     let species: Vec<Species> = shipped_species()
         .into_iter()
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
@@ -67,12 +62,6 @@ fn main() {
         tables::series(&species, flag("--to", 60));
     }
     if matches!(which, "fingerprint") {
-        let named = |flag: &str| {
-            args.iter()
-                .position(|a| a == flag)
-                .and_then(|i| args.get(i + 1))
-                .map(|v| v.to_ascii_lowercase())
-        };
         let mut all = species.clone();
         if only.is_none_or(|o| o.eq_ignore_ascii_case("paper")) {
             all.push(paper.clone());
@@ -80,7 +69,8 @@ fn main() {
         let geometries: Vec<SliceGeometry> = [SliceGeometry::Planar, SliceGeometry::Axisymmetric]
             .into_iter()
             .filter(|g| {
-                named("--geometry").is_none_or(|n| format!("{g:?}").to_ascii_lowercase() == n)
+                common::value(&args, "--geometry")
+                    .is_none_or(|n| format!("{g:?}").eq_ignore_ascii_case(n))
             })
             .collect();
         fingerprint(&all, &geometries, flag("--to", 10));
