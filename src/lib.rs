@@ -32,7 +32,8 @@ pub use plugin::{
 };
 pub use sim::{SliceSim, SliceView};
 pub use species::{
-    Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
+    BellCoupling, Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species,
+    SpeciesError,
 };
 
 /// What a game needs: `use bevy_jellyfish::prelude::*;`.
@@ -47,7 +48,8 @@ pub mod prelude {
         Steering, StrokeStarted, SurfaceMode, SwimMotion, TankWater, Tier,
     };
     pub use crate::species::{
-        Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species, SpeciesError,
+        BellCoupling, Bending, GonadShape, MuscleLaw, MuscleTiming, SliceGeometry, Species,
+        SpeciesError,
     };
 }
 

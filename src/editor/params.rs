@@ -4,8 +4,8 @@
 //! shown as an error above the sliders.
 
 use crate::species::{
-    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
-    Species, limits,
+    Advection, BellCoupling, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming,
+    SliceGeometry, Species, limits,
 };
 use bevy_egui::egui;
 use std::ops::RangeInclusive;
@@ -205,6 +205,7 @@ pub const OTHER_FIELDS: &[&str] = &[
     "muscle_timing",
     "advection",
     "kernel",
+    "bell_coupling",
     "structural_abs",
     "gonad_shape",
     "gonad_color",
@@ -283,6 +284,7 @@ pub fn species_controls(ui: &mut egui::Ui, species: &mut Species) -> bool {
                                 changed |= slice_geometry(ui, &mut species.slice_geometry);
                                 changed |= advection(ui, &mut species.advection);
                                 changed |= kernel(ui, &mut species.kernel);
+                                changed |= bell_coupling(ui, &mut species.bell_coupling);
                             }
                             "Looks" => {
                                 ui.label("bell colour").on_hover_text("bell_color");
@@ -377,6 +379,13 @@ fn gonad_shape(ui: &mut egui::Ui, shape: &mut GonadShape) -> bool {
     let why = "how the gonads are drawn through the bell";
     let all = &GonadShape::ALL;
     picker(ui, "gonad_shape", "gonad shape", why, shape, all)
+}
+
+fn bell_coupling(ui: &mut egui::Ui, coupling: &mut BellCoupling) -> bool {
+    let why = "what the bell's solve expects of the water: AddedMass is what the shipped \
+               species are calibrated with, WaterResponse keeps the wall from giving";
+    let all = &BellCoupling::ALL;
+    picker(ui, "bell_coupling", "bell coupling", why, coupling, all)
 }
 
 fn kernel(ui: &mut egui::Ui, kernel: &mut Kernel) -> bool {

@@ -49,6 +49,19 @@ impl BandedSpd {
         }
     }
 
+    /// Half-bandwidth: entries with `|row - col|` past it are zero.
+    pub(crate) fn band(&self) -> usize {
+        self.band
+    }
+
+    /// The entry at `(row, col)`, which must lie within the band.
+    #[inline]
+    pub(crate) fn get(&self, row: usize, col: usize) -> f64 {
+        let (r, c) = if row >= col { (row, col) } else { (col, row) };
+        debug_assert!(r - c <= self.band, "entry outside the band");
+        self.lower[r * (self.band + 1) + (r - c)]
+    }
+
     /// Adds `value` at `(row, col)` of the symmetric matrix (give each off-diagonal pair
     /// once, either way round).
     pub(crate) fn add(&mut self, row: usize, col: usize, value: f64) {

@@ -8,7 +8,9 @@
 
 use super::fluid::{Component, Fluid};
 use super::kernel::{Stencil, span};
+use super::response::Response;
 use glam::Vec2;
+use std::ops::Range;
 
 /// The stencils of a set of points on the grid, per velocity component.
 #[derive(Clone, Default)]
@@ -114,6 +116,69 @@ impl Coupling {
             let f = forces[m.point];
             self.u[m.partner].spread_mirrored(f.x, scale_u, force_u, mirror_u);
             self.v[m.partner].spread_mirrored(f.y, scale_v, force_v, mirror_v);
+        }
+    }
+
+    /// Writes over `water` how far each of its points moves in a step of `dt` for a unit
+    /// force on each (and on its mirror image, where it has one): what one samples of the
+    /// other's spread, `dt²/ρ` times their stencils' overlap. The whole grid is counted,
+    /// as if the half past the axis were stepped too: the water there is the mirror of the
+    /// solved half, and so is every force, so the overlaps are the same.
+    pub(crate) fn respond(&self, fluid: &Fluid, dt: f32, water: &mut Response) {
+        water.clear();
+        let (n, per_force) = (fluid.n, dt * dt / fluid.rho);
+        let components = [
+            (&self.u, &fluid.spread_u, Component::U, -1.0),
+            (&self.v, &fluid.spread_v, Component::V, 1.0),
+        ];
+        for p in 0..water.len() {
+            let a = water.points()[p];
+            for q in p..(p + water.reach() + 1).min(water.len()) {
+                let b = water.points()[q];
+                let meet = |x: Range<usize>, y: Range<usize>| x.start < y.end && y.start < x.end;
+                let meets = |s: &[Stencil]| {
+                    meet(s[a].rows(), s[b].rows()) && meet(s[a].columns(), s[b].columns())
+                };
+                if !meets(&self.u) && !meets(&self.v) {
+                    continue;
+                }
+                for (c, &(stencils, scale, component, image)) in components.iter().enumerate() {
+                    let (sa, sb) = (&stencils[a], &stencils[b]);
+                    let straight = sa.overlap(sb, scale);
+                    if straight == 0.0 {
+                        // Stencils that do not meet meet no mirror image either: an
+                        // image past the axis is further from a solved point than it.
+                        continue;
+                    }
+                    // What `of` samples of `by`'s mirror image, where that reaches it.
+                    let mirrored = |of: &Stencil, by: &Stencil| {
+                        let columns = by.columns();
+                        let reflected = [columns.start, columns.end - 1]
+                            .map(|col| component.mirrored_column(col, n));
+                        if let [Some(far), Some(near)] = reflected
+                            && !meet(near..far + 1, of.columns())
+                        {
+                            return 0.0;
+                        }
+                        image
+                            * of.overlap_mirrored(by, scale, |col| {
+                                component.mirrored_column(col, n)
+                            })
+                    };
+                    let mut a_of_b = straight;
+                    if water.imaged(q) {
+                        a_of_b += mirrored(sa, sb);
+                    }
+                    water.add(c, p, q, per_force * a_of_b);
+                    if q != p {
+                        let mut b_of_a = straight;
+                        if water.imaged(p) {
+                            b_of_a += mirrored(sb, sa);
+                        }
+                        water.add(c, q, p, per_force * b_of_a);
+                    }
+                }
+            }
         }
     }
 }

@@ -39,6 +39,40 @@ pub(crate) struct Stencil {
     row: usize,
 }
 
+impl Taps {
+    /// `Σ w·w'·scale(face)` over the faces both reach: where both run over consecutive
+    /// faces (away from the folded ends) by their offset, otherwise face by face.
+    #[inline]
+    fn overlap(&self, other: &Taps, scale: impl Fn(usize) -> f32) -> f32 {
+        let (a, b) = (&self.index[..self.len], &other.index[..other.len]);
+        let (Some(&a0), Some(&b0)) = (a.first(), b.first()) else {
+            return 0.0;
+        };
+        let consecutive = |t: &[u32], first: u32| t[t.len() - 1] - first == t.len() as u32 - 1;
+        if consecutive(a, a0) && consecutive(b, b0) {
+            let (from, to) = (a0.max(b0), (a0 + a.len() as u32).min(b0 + b.len() as u32));
+            let mut sum = 0.0;
+            for face in from..to {
+                let (wa, wb) = (
+                    self.weight[(face - a0) as usize],
+                    other.weight[(face - b0) as usize],
+                );
+                sum += wa * wb * scale(face as usize);
+            }
+            return sum;
+        }
+        let mut sum = 0.0;
+        for (i, &fa) in a.iter().enumerate() {
+            for (j, &fb) in b.iter().enumerate() {
+                if fa == fb {
+                    sum += self.weight[i] * other.weight[j] * scale(fa as usize);
+                }
+            }
+        }
+        sum
+    }
+}
+
 impl Stencil {
     /// Locates a point at fractional face coordinates `(gx, gy)` in an `nx × ny` array of
     /// faces (row-major), the kernel stretched `stretch` times (see the module), in place:
@@ -152,6 +186,44 @@ impl Stencil {
                 }
             }
         }
+    }
+
+    /// What `self` samples of a unit value spread through `other`: `Σ w·w'·scale` over
+    /// the faces both reach. A stencil is one set of taps across times one along, and the
+    /// scale varies across only, so the sum is a product of two short ones.
+    pub(crate) fn overlap(&self, other: &Stencil, scale: &[f32]) -> f32 {
+        let along = self.y.overlap(&other.y, |_| 1.0);
+        if along == 0.0 {
+            return 0.0;
+        }
+        along * self.x.overlap(&other.x, |column| scale[column])
+    }
+
+    /// [`Self::overlap`] with `other`'s point mirrored: its columns `mirror`ed (dropped
+    /// where off the grid), as [`Self::spread_mirrored`] spreads it.
+    pub(crate) fn overlap_mirrored(
+        &self,
+        other: &Stencil,
+        scale: &[f32],
+        mirror: impl Fn(usize) -> Option<usize>,
+    ) -> f32 {
+        let along = self.y.overlap(&other.y, |_| 1.0);
+        if along == 0.0 {
+            return 0.0;
+        }
+        let (x, ox) = (&self.x, &other.x);
+        let mut across = 0.0;
+        for oa in 0..ox.len {
+            let Some(column) = mirror(ox.index[oa] as usize) else {
+                continue;
+            };
+            for a in 0..x.len {
+                if x.index[a] as usize == column {
+                    across += x.weight[a] * ox.weight[oa] * scale[column];
+                }
+            }
+        }
+        along * across
     }
 }
 
@@ -445,6 +517,49 @@ mod tests {
             let read = 2.5 * s.sample(&field);
             assert!((inner - read).abs() < 1e-5, "{g}: {inner} against {read}");
         }
+    }
+
+    /// The overlap of two stencils is what one samples of a unit value spread through the
+    /// other, straight or mirrored, at folded ends, with a scale varying across, and zero
+    /// where they do not meet.
+    #[test]
+    fn an_overlap_is_a_spread_sampled() {
+        let n = 30;
+        let scale: Vec<f32> = (0..n).map(|c| 1.0 + 0.1 * c as f32).collect();
+        let mirror = |c: usize| (21usize).checked_sub(c).filter(|&m| m < n);
+        for (a, b, stretch) in [
+            ((7.3, 9.1), (8.0, 9.6), 1.0),
+            ((10.2, 0.3), (9.6, 1.1), 1.4),
+            ((0.2, 12.0), (1.1, 12.4), 1.0),
+            ((10.2, 5.0), (11.0, 5.0), 2.0),
+            ((3.0, 3.0), (20.0, 20.0), 1.0),
+        ] {
+            let (sa, sb) = (
+                stencil(Kernel::Roma3, a.0, a.1, n, n, stretch),
+                stencil(Kernel::Roma3, b.0, b.1, n, n, stretch),
+            );
+            let mut field = vec![0.0f32; n * n];
+            sa.spread(1.0, &scale, &mut field);
+            let straight = sb.sample(&field);
+            let mut field = vec![0.0f32; n * n];
+            sa.spread_mirrored(1.0, &scale, &mut field, mirror);
+            let mirrored = sb.sample(&field);
+            let (got, got_mirrored) = (
+                sb.overlap(&sa, &scale),
+                sb.overlap_mirrored(&sa, &scale, mirror),
+            );
+            assert!(
+                (got - straight).abs() < 1e-6,
+                "{a:?} {b:?}: {got} vs {straight}"
+            );
+            assert!(
+                (got_mirrored - mirrored).abs() < 1e-6,
+                "{a:?} {b:?} mirrored: {got_mirrored} vs {mirrored}"
+            );
+        }
+        let far = stencil(Kernel::Roma3, 3.0, 3.0, n, n, 1.0);
+        let other = stencil(Kernel::Roma3, 20.0, 20.0, n, n, 1.0);
+        assert_eq!(far.overlap(&other, &scale), 0.0);
     }
 
     #[test]

@@ -24,6 +24,7 @@ macro_rules! eight_wide {
 }
 
 mod banded;
+mod banded_lu;
 pub(crate) mod body;
 pub mod clock;
 pub(crate) mod coupling;
@@ -36,6 +37,7 @@ pub(crate) mod kernel;
 pub(crate) mod muscle;
 pub(crate) mod oral_arms;
 pub(crate) mod pressure;
+pub(crate) mod response;
 mod slice;
 pub mod tank;
 pub(crate) mod trilinear;

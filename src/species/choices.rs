@@ -1,6 +1,6 @@
 //! The enumerated fields of a species: the gonads' shape, the slice's geometry, how its
-//! fringe drags on the water, and two numerical choices kept with the species because its
-//! grid resolution is too.
+//! fringe drags on the water, and three numerical choices kept with the species because
+//! its grid resolution is too.
 //!
 //! Their reflected type paths stay `bevy_jellyfish::species::*`, where they lived before
 //! this file split off, so that nothing reflected by path changes.
@@ -75,6 +75,31 @@ pub enum Kernel {
 impl Kernel {
     /// Every kernel, for pickers.
     pub const ALL: [Kernel; 2] = [Kernel::Roma3, Kernel::Bilinear];
+}
+
+/// How the bell's implicit solve expects the water to give under its forces over a step:
+/// a numerical choice, kept with the species because its calibration was made with one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "bevy", derive(bevy::reflect::Reflect))]
+#[cfg_attr(feature = "bevy", type_path = "bevy_jellyfish::species")]
+pub enum BellCoupling {
+    /// Each point alone drags half a cell's water along: cheap, but the water then
+    /// carries the points a step before their springs' pull reaches it, and the
+    /// subumbrella stretches 11–15% under its own stroke at a species' own step (less
+    /// with finer steps). The shipped species are calibrated with it.
+    #[default]
+    AddedMass,
+    /// The water's response as the kernel spreads and reads it: a point moves with the
+    /// water its neighbours push too, so the solve finds forces the water can take up.
+    /// The wall keeps its length to 2–4% at the species' own step, and the stroke
+    /// changes less with the step and the grid (`docs/numerics.md`, "A coupling that sees
+    /// the water's response").
+    WaterResponse,
+}
+
+impl BellCoupling {
+    /// Every coupling, for pickers.
+    pub const ALL: [BellCoupling; 2] = [BellCoupling::AddedMass, BellCoupling::WaterResponse];
 }
 
 /// The geometry of the slice the water and the bell are simulated in.

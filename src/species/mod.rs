@@ -9,10 +9,11 @@
 //! - `derived`: what follows from the fields (cell size, period, the fixed step...);
 //! - `file`: RON text in and out, validated against [`limits`];
 //! - `choices`: the enumerated fields (gonad shape, slice geometry, fringe drag, advection,
-//!   kernel);
+//!   kernel, bell coupling);
 //! - `error`: [`SpeciesError`].
 
 mod choices;
+mod cost;
 mod derived;
 mod error;
 mod file;
@@ -22,7 +23,8 @@ mod presets;
 mod tests;
 
 pub use choices::{
-    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
+    Advection, BellCoupling, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming,
+    SliceGeometry,
 };
 pub use derived::REFERENCE_HINGE_LENGTH;
 pub use error::SpeciesError;
@@ -58,6 +60,9 @@ pub struct Species {
     pub advection: Advection,
     /// How the bell's points read and push the water (see [`Kernel`]).
     pub kernel: Kernel,
+    /// What the bell's implicit solve expects of the water over a step (see
+    /// [`BellCoupling`]).
+    pub bell_coupling: BellCoupling,
     /// Width of the band over which the bell's points meet the water, in bell diameters:
     /// the immersed boundary's regularisation. 0.3 is three cells at ten cells per
     /// diameter (Roma et al.'s kernel at the paper's resolution); finer grids resolve the

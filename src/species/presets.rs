@@ -2,8 +2,8 @@
 //! numerics, one call away.
 
 use super::{
-    Advection, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming, SliceGeometry,
-    Species,
+    Advection, BellCoupling, Bending, FringeDrag, GonadShape, Kernel, MuscleLaw, MuscleTiming,
+    SliceGeometry, Species,
 };
 
 impl Species {
@@ -112,6 +112,7 @@ impl Species {
             slice_geometry: SliceGeometry::Planar,
             advection: Advection::SemiLagrangian,
             kernel: Kernel::Roma3,
+            bell_coupling: BellCoupling::AddedMass,
             boundary_width: 0.3,
             diameter: 0.040,
             height: 0.028,

@@ -299,6 +299,35 @@ fn the_slice_geometry_reads_and_writes_and_a_wrong_one_is_named() {
     );
 }
 
+#[test]
+fn the_bell_coupling_reads_and_writes_and_a_wrong_one_is_named() {
+    let s = Species::from_ron("(bell_coupling: WaterResponse)").unwrap();
+    assert_eq!(s.bell_coupling, BellCoupling::WaterResponse);
+    let back = Species::from_ron(&s.to_ron().unwrap()).unwrap();
+    assert_eq!(back.bell_coupling, BellCoupling::WaterResponse);
+    // Every shipped species and the paper's model are calibrated with the added mass.
+    for species in [
+        Species::aurelia(),
+        Species::paper(),
+        Species::aequorea(),
+        Species::sarsia(),
+    ] {
+        assert_eq!(
+            species.bell_coupling,
+            BellCoupling::AddedMass,
+            "{}",
+            species.name
+        );
+    }
+    let err = Species::from_ron("(bell_coupling: Exact)").unwrap_err();
+    let msg = err.to_string();
+    assert!(matches!(err, SpeciesError::Parse(_)), "{msg}");
+    assert!(
+        msg.contains("Exact") && msg.contains("WaterResponse"),
+        "the message names the bad value and the good ones: {msg}"
+    );
+}
+
 /// The limits' cost model counts what the advection scheme costs: the dearer schemes
 /// estimate dearer in proportion to the cells, so a species that is cheap only because
 /// the model ignored its scheme is refused as too slow.

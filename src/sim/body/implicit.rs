@@ -3,6 +3,8 @@
 
 use super::elements::Constraint;
 use crate::sim::banded::{BandedSpd, Stamp};
+use crate::sim::banded_lu::BandedLu;
+use crate::sim::response::Response;
 use glam::Vec2;
 use std::ops::Range;
 
@@ -28,6 +30,11 @@ pub(super) struct Solver {
     /// The right-hand side, then the solution.
     pub(crate) rhs: Vec<f64>,
     forces: Vec<Vec2>,
+    /// How many of the body's points each solved one stands for (itself and its mirror
+    /// image): `W`, the Galerkin restriction's `Eᵀ E`.
+    counts: Vec<f64>,
+    /// `W + K·G`, where the solve has the water's response `G`.
+    coupled: BandedLu,
 }
 
 /// Where a point's displacement is in the band ordering.
@@ -86,6 +93,10 @@ impl Solver {
                 mirrored.push(j);
             }
         }
+        let mut counts = vec![1.0; sequence.len()];
+        for &j in &mirrored {
+            counts[order[j].expect("a mirrored point has a place").at] += 1.0;
+        }
         Self {
             order,
             sequence,
@@ -94,7 +105,25 @@ impl Solver {
             assembly: Vec::new(),
             rhs: Vec::new(),
             forces: vec![Vec2::ZERO; body_len],
+            counts,
+            coupled: BandedLu::default(),
         }
+    }
+
+    /// An empty water response over the solved points, in this solver's order.
+    pub(crate) fn response(&self) -> Response {
+        let imaged = self.counts.iter().map(|&c| c > 1.0).collect();
+        Response::new(self.sequence.clone(), imaged)
+    }
+
+    /// The solved points, in band order.
+    pub(crate) fn sequence(&self) -> &[usize] {
+        &self.sequence
+    }
+
+    /// Where point `i` is solved, and whether as its partner's mirror image.
+    pub(crate) fn place(&self, i: usize) -> Option<(usize, bool)> {
+        self.order[i].map(|p| (p.at, p.mirrored))
     }
 
     /// The bell's solver and the tentacles', for a body of `count` points, on the half
@@ -197,22 +226,34 @@ impl Solver {
     /// Solves for the forces at the predicted positions, `damping = τ/dt` adding the
     /// mesoglea's viscosity (backward Euler: the rate over the step, the stiffness
     /// `k·(1 + τ/dt)`), with a diagonal of its own for each point (`diag(point)`: the
-    /// water it drags along, or the tentacles' drag, over the step).
+    /// water it drags along, or the tentacles' drag, over the step). With the water's
+    /// `response` the diagonal is replaced by it: `(W + K·G) f = F` (`docs/numerics.md`).
     pub(crate) fn solve_each(
         &mut self,
         cons: &[Constraint],
         diag: impl Fn(usize) -> f32,
+        response: Option<&Response>,
         damping: f32,
         loads: &[(usize, Vec2)],
         out: &mut [Vec2],
     ) {
         self.matrix.clear_to_diagonal(0.0);
-        for (o, &i) in self.sequence.iter().enumerate() {
+        let lone = if response.is_some() {
+            &[][..]
+        } else {
+            &self.sequence[..]
+        };
+        for (o, &i) in lone.iter().enumerate() {
             let d = diag(i) as f64;
             self.matrix.add(2 * o, 2 * o, d);
             self.matrix.add(2 * o + 1, 2 * o + 1, d);
         }
-        for &j in &self.mirrored {
+        let images = if response.is_some() {
+            &[][..]
+        } else {
+            &self.mirrored[..]
+        };
+        for &j in images {
             let place = self.order[j].expect("a mirrored point has a place");
             let (o, d) = (place.at, diag(j) as f64);
             self.matrix.add(2 * o, 2 * o, d);
@@ -251,6 +292,10 @@ impl Solver {
             self.rhs[2 * place.at] += f.x as f64;
             self.rhs[2 * place.at + 1] += f.y as f64;
         }
+        if let Some(response) = response {
+            self.solve_with(response, out);
+            return;
+        }
         if !self.matrix.factor_and_solve(&mut self.rhs) {
             // Only non-finite input gets here; the step's health check then recovers.
             for &i in self.sequence.iter().chain(&self.mirrored) {
@@ -267,6 +312,52 @@ impl Solver {
             let place = self.order[j].expect("a mirrored point has a place");
             let (x, y) = (self.rhs[2 * place.at], self.rhs[2 * place.at + 1]);
             out[j] = diag(j) * place.read(Vec2::new(x as f32, y as f32));
+        }
+    }
+
+    /// Solves `(W + K·G) f = F` for the forces themselves, `K` assembled in `matrix`
+    /// (no diagonal of its own), `F` in `rhs`, and writes them to `out`, mirror images
+    /// included. `G` couples a force's x to displacements' x only, so `(K·G)[r][c]` sums
+    /// over `K`'s row `r` at the unknowns of `c`'s component.
+    fn solve_with(&mut self, response: &Response, out: &mut [Vec2]) {
+        let n = self.sequence.len();
+        debug_assert_eq!(response.len(), n, "a response over the solved points");
+        let (dofs, kb, gb) = (2 * n, self.matrix.band(), response.band());
+        let band = kb + 2 * gb;
+        self.coupled.reset(dofs, band, band);
+        for r in 0..dofs {
+            // Column `col` of row `r` is at `col + band − r`.
+            let row = self.coupled.row_mut(r);
+            row[band] = self.counts[r / 2];
+            for q in r.saturating_sub(kb)..(r + kb + 1).min(dofs) {
+                let k = self.matrix.get(r, q);
+                if k == 0.0 {
+                    continue;
+                }
+                let (point, c) = (q / 2, q % 2);
+                let first = point.saturating_sub(gb);
+                let g = response.row(c, point, first..(point + gb + 1).min(n));
+                let at = 2 * first + c + band - r;
+                for (slot, &g) in row[at..].iter_mut().step_by(2).zip(g) {
+                    *slot += k * g as f64;
+                }
+            }
+        }
+        if !self.coupled.factor_and_solve(&mut self.rhs) {
+            // Only non-finite input gets here; the step's health check then recovers.
+            for &i in self.sequence.iter().chain(&self.mirrored) {
+                out[i] = Vec2::splat(f32::NAN);
+            }
+            return;
+        }
+        out.iter_mut().for_each(|o| *o = Vec2::ZERO);
+        let force = |o: usize| Vec2::new(self.rhs[2 * o] as f32, self.rhs[2 * o + 1] as f32);
+        for (o, &i) in self.sequence.iter().enumerate() {
+            out[i] = force(o);
+        }
+        for &j in &self.mirrored {
+            let place = self.order[j].expect("a mirrored point has a place");
+            out[j] = place.read(force(place.at));
         }
     }
 }

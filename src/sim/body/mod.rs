@@ -17,6 +17,7 @@ mod implicit;
 mod kept;
 mod network;
 mod outline;
+mod relaxation;
 mod rest_shape;
 mod tentacle;
 
@@ -27,6 +28,7 @@ pub(crate) use outline::{polygon_area, signed_area};
 pub(crate) use rest_shape::{mesoglea_thickness, rest_outline};
 pub(crate) use tentacle::cylinder_filament;
 
+use crate::sim::response::Response;
 use crate::species::Species;
 #[cfg(test)]
 use elements::constraints;
@@ -76,6 +78,16 @@ impl Pull {
 /// *Sarsia*'s, and not in 100 of the rowers' at any size, grid or rate tried); at 100
 /// the swing still grows.
 const DRAG_CHANGE: f32 = 16.0;
+
+/// What one implicit solve reads: the predicted positions, the step, the water a point
+/// drags along over it, and the water's response where the bell is solved against it.
+#[derive(Clone, Copy)]
+struct Solve<'a> {
+    predicted: &'a [Vec2],
+    dt: f32,
+    mass_over_dt2: &'a [f32],
+    water: Option<&'a Response>,
+}
 
 /// The bell and tentacles as a spring-mass system: points, Hookean springs, angular
 /// springs (hinges) and muscle springs, per metre of slice depth.
@@ -314,8 +326,47 @@ impl Body {
         slip: &mut [Vec2],
     ) {
         let mut split = std::mem::take(&mut self.split);
-        self.implicit_forces_split(&mut split, predicted, dt, mass_over_dt2, forces, slip);
+        let solve = Solve {
+            predicted,
+            dt,
+            mass_over_dt2,
+            water: None,
+        };
+        self.implicit_forces_split(&mut split, solve, forces, slip);
         self.split = split;
+    }
+
+    /// [`Self::implicit_forces`] with the bell's forces solved against the `water`'s
+    /// response over the step instead of a lone mass a point (`mass_over_dt2` then only
+    /// weighs the fringe's pull against the margin's water).
+    pub(crate) fn coupled_forces(
+        &mut self,
+        water: &Response,
+        predicted: &[Vec2],
+        dt: f32,
+        mass_over_dt2: &[f32],
+        forces: &mut [Vec2],
+        slip: &mut [Vec2],
+    ) {
+        let mut split = std::mem::take(&mut self.split);
+        let solve = Solve {
+            predicted,
+            dt,
+            mass_over_dt2,
+            water: Some(water),
+        };
+        self.implicit_forces_split(&mut split, solve, forces, slip);
+        self.split = split;
+    }
+
+    /// The bell's solved points, in its solver's order.
+    pub(crate) fn bell_solved(&self) -> &[usize] {
+        self.bell_solver.sequence()
+    }
+
+    /// An empty water response over the bell's solved points, in its solver's order.
+    pub(crate) fn water_response(&self) -> Response {
+        self.bell_solver.response()
     }
 
     /// [`Self::implicit_forces`] with the elements sorted into `split`'s buffers, which
@@ -323,12 +374,16 @@ impl Body {
     fn implicit_forces_split(
         &mut self,
         split: &mut Split,
-        predicted: &[Vec2],
-        dt: f32,
-        mass_over_dt2: &[f32],
+        solve: Solve,
         forces: &mut [Vec2],
         slip: &mut [Vec2],
     ) {
+        let Solve {
+            predicted,
+            dt,
+            mass_over_dt2,
+            water,
+        } = solve;
         let bell_len = self.bell.end;
         let damping = self.damping_time / dt;
         let Split { bell, tentacles } = split;
@@ -379,8 +434,14 @@ impl Body {
                 count += 1;
             }
         }
-        self.bell_solver
-            .solve_each(bell, |i| mass_over_dt2[i], damping, &loads[..count], forces);
+        self.bell_solver.solve_each(
+            bell,
+            |i| mass_over_dt2[i],
+            water,
+            damping,
+            &loads[..count],
+            forces,
+        );
         if !fringe {
             return;
         }
@@ -415,6 +476,7 @@ impl Body {
         self.tentacle_solver.solve_each(
             tentacles,
             |i| diagonal(drag[i], i),
+            None,
             damping,
             &[],
             &mut self.scratch,
@@ -464,41 +526,6 @@ impl Body {
             };
         }
         pulls
-    }
-
-    /// Moves the bell's points by the part of their implicit displacement the fluid cannot
-    /// see: `δ = forces · dt²/m`, high-passed along the chain.
-    ///
-    /// The points move with the interpolated water, and a kernel three cells wide cannot
-    /// represent neighbouring points half a cell apart moving oppositely: a zigzag along the
-    /// subumbrella spreads no net force, so the water never straightens it, and the
-    /// grid-scale unevenness of interpolation feeds it every step until the bell is a saw
-    /// blade. Here that part relaxes under the bell's own springs, with the mass the
-    /// implicit solve assumed; a smooth displacement's high-pass is of order (spacing/
-    /// wavelength)², so everything the water does see is left to the water. Like the
-    /// filters of vortex-sheet methods (Krasny 1986), only unresolved modes are touched.
-    pub(crate) fn relax_unresolved(&mut self, forces: &[Vec2], dt2_over_mass: &[f32]) {
-        let n = self.bell.len();
-        if n < 3 {
-            return;
-        }
-        let f = &forces[self.bell.clone()];
-        // Minus a quarter of the second difference: 1 on the alternating mode, ~0 on smooth
-        // ones; one-sided at the margins.
-        let high = |i: usize| {
-            if i == 0 {
-                0.25 * (f[0] - 2.0 * f[1] + f[2])
-            } else if i == n - 1 {
-                0.25 * (f[n - 1] - 2.0 * f[n - 2] + f[n - 3])
-            } else {
-                -0.25 * (f[i - 1] - 2.0 * f[i] + f[i + 1])
-            }
-        };
-        // The shift reads the forces only, so it moves the points as it goes.
-        let first = self.bell.start;
-        for (i, p) in self.points[self.bell.clone()].iter_mut().enumerate() {
-            *p += dt2_over_mass[first + i] * high(i);
-        }
     }
 
     /// Averages the body with its mirror image about the vertical line `x = centre`.

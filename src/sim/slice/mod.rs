@@ -14,6 +14,7 @@ use super::escape::Escape;
 use super::fluid::Fluid;
 use super::muscle::MuscleDrive;
 use super::oral_arms::OralArms;
+use super::response::Response;
 use crate::species::{SliceGeometry, Species, SpeciesError};
 use frame::ComovingFrame;
 use glam::Vec2;
@@ -53,6 +54,8 @@ pub struct SliceSim {
     substeps: u64,
     last_substeps: usize,
     coupling: Coupling,
+    /// The water's response to the bell over a step, for its implicit solve.
+    water: Response,
     velocity: Vec<Vec2>,
     predicted: Vec<Vec2>,
     forces: Vec<Vec2>,
@@ -106,6 +109,7 @@ impl SliceSim {
             substeps: 0,
             last_substeps: 0,
             coupling: Coupling::default(),
+            water: Response::default(),
             velocity: vec![Vec2::ZERO; count],
             predicted: vec![Vec2::ZERO; count],
             forces: vec![Vec2::ZERO; count],

@@ -8,6 +8,7 @@
 //! 5. the frame follows the bell.
 
 use super::SliceSim;
+use crate::species::BellCoupling;
 use glam::Vec2;
 
 /// The fluid mass a body point drags along in one step, in units of `ρ·h²` (per metre of
@@ -90,13 +91,31 @@ impl SliceSim {
             *m = mass / (dt * dt);
             *inverse = dt * dt / mass;
         }
-        self.body.implicit_forces(
-            &self.predicted,
-            dt,
-            &self.mass_over_dt2,
-            &mut self.forces,
-            &mut self.slip,
-        );
+        match self.species.bell_coupling {
+            BellCoupling::AddedMass => self.body.implicit_forces(
+                &self.predicted,
+                dt,
+                &self.mass_over_dt2,
+                &mut self.forces,
+                &mut self.slip,
+            ),
+            BellCoupling::WaterResponse => {
+                if self.water.points() != self.body.bell_solved() {
+                    self.water = self.body.water_response();
+                }
+                self.coupling.respond(&self.fluid, dt, &mut self.water);
+                self.body
+                    .add_relaxation(&mut self.water, &self.dt2_over_mass);
+                self.body.coupled_forces(
+                    &self.water,
+                    &self.predicted,
+                    dt,
+                    &self.mass_over_dt2,
+                    &mut self.forces,
+                    &mut self.slip,
+                );
+            }
+        }
         self.coupling.spread(&mut self.fluid, &self.forces);
 
         self.fluid.step(dt);
