@@ -9,7 +9,7 @@ mod common;
 use bevy_jellyfish::shape::profile::Profile;
 use bevy_jellyfish::sim::clock::FixedClock;
 use bevy_jellyfish::sim::inspect::{Outline, cavity, contains};
-use bevy_jellyfish::{MuscleLaw, MuscleTiming, SliceGeometry, SliceSim, Species};
+use bevy_jellyfish::{BellCoupling, MuscleLaw, MuscleTiming, SliceGeometry, SliceSim, Species};
 use glam::Vec2;
 
 /// The shipped species in `geometry`.
@@ -329,6 +329,56 @@ fn thirty_sixty_and_144_hz_frames_agree(geometry: SliceGeometry) {
         );
     }
     assert!(a > 2.0 * species.diameter, "swam {a} m in 24 s");
+}
+
+in_both_geometries!(fn with_the_waters_response_the_wall_holds_and_time_splits_alike);
+/// `BellCoupling::WaterResponse`: the subumbrella keeps its length under the stroke at the
+/// species' own step, where the added mass lets it stretch by a tenth and more (so a
+/// solve that lost the response would show), the bell swims apex first, and the slice is
+/// still deaf to how its caller splits time: frames of 1/32 s and of 1/64 s, the same bits.
+fn with_the_waters_response_the_wall_holds_and_time_splits_alike(geometry: SliceGeometry) {
+    let added = aurelia(geometry);
+    let water = Species {
+        bell_coupling: BellCoupling::WaterResponse,
+        ..added.clone()
+    };
+    let most_stretched = |s: &Species| {
+        let mut sim = SliceSim::new(s).unwrap();
+        let mut most = f32::MIN;
+        while sim.cycle() < 4 {
+            sim.advance_with(1.0 / 60.0, |sim| {
+                if sim.cycle() >= 2 {
+                    most = most.max(sim.meridian_strain());
+                }
+            });
+        }
+        (most, sim.swim_distance())
+    };
+    let [(give, _), (held, swum)] = [&added, &water].map(most_stretched);
+    println!(
+        "cycles 2-4, the subumbrella at most {:+.1}% of its length with the added mass, \
+         {:+.1}% with the water's response; {:.3} D swum",
+        100.0 * give,
+        100.0 * held,
+        swum / added.diameter
+    );
+    assert!(
+        give >= held + 0.03,
+        "the added mass's give {give}, the response's {held}"
+    );
+    assert!(held.abs() <= 0.05, "with the water's response: {held}");
+    assert!(swum > 0.5 * added.diameter, "swam {swum} m in four strokes");
+    let run = |dt: f32, frames: usize| {
+        let mut sim = SliceSim::new(&water).unwrap();
+        (0..frames).for_each(|_| sim.advance(dt));
+        sim
+    };
+    let (a, b) = (run(1.0 / 32.0, 96), run(1.0 / 64.0, 192));
+    assert_eq!(
+        state_bits(&a),
+        state_bits(&b),
+        "1/32 s against 1/64 s frames"
+    );
 }
 
 in_both_geometries!(fn the_box_follows_the_bell_without_jumps);
@@ -827,6 +877,49 @@ fn the_bell_keeps_its_length_as_the_step_shrinks(geometry: SliceGeometry) {
         );
         assert!(own <= 0.2, "{}: {own} with its own step", base.name);
         assert!(fine < own / 3.0, "{}: {own} then {fine}", base.name);
+        // With the water's response in the solve the give is gone at the own step: the
+        // length the finer steps converge to, to within the mesoglea's own strain.
+        let water = Species {
+            bell_coupling: BellCoupling::WaterResponse,
+            ..base.clone()
+        };
+        let held = |finer: u32| {
+            let mut sim = SliceSim::new(&water).unwrap();
+            if finer > 1 {
+                let steps = SliceSim::steps_per_cycle(&water) * finer;
+                sim.set_clock(FixedClock::new(water.period(), steps));
+            }
+            let mut most = f32::MIN;
+            while sim.cycle() < 12 {
+                sim.advance_with(1.0 / 60.0, |sim| {
+                    if sim.cycle() >= 8 {
+                        most = most.max(sim.meridian_strain());
+                    }
+                });
+            }
+            most
+        };
+        let (own_added, fine_added) = (own, fine);
+        let (held_own, held_fine) = (held(1), held(16));
+        println!(
+            "{}, with the water's response: at most {:+.1}% with its own step, {:+.1}% with \
+             16 times the steps",
+            base.name,
+            100.0 * held_own,
+            100.0 * held_fine
+        );
+        let (give, left) = (own_added - fine_added, held_own - held_fine);
+        assert!(
+            held_own <= 0.06,
+            "{}: {held_own} with its own step",
+            base.name
+        );
+        assert!(
+            left.abs() <= 0.05 && left <= 0.5 * give,
+            "{}: {held_own} with its own step, {held_fine} with 16 times the steps; the \
+             added mass's give {give}",
+            base.name
+        );
     }
 }
 
