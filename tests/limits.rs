@@ -12,7 +12,8 @@
 use bevy_jellyfish::shape::{JellyMesh, build_into};
 use bevy_jellyfish::species::limits::{LIMITS, Limit, MAX_MESH_VERTICES};
 use bevy_jellyfish::species::{
-    Advection, Bending, GonadShape, Kernel, REFERENCE_HINGE_LENGTH, SliceGeometry, SpeciesError,
+    Advection, BellCoupling, Bending, GonadShape, Kernel, REFERENCE_HINGE_LENGTH, SliceGeometry,
+    SpeciesError,
 };
 use bevy_jellyfish::{SliceSim, Species};
 use std::time::{Duration, Instant};
@@ -176,6 +177,7 @@ fn random_species(rng: &mut Rng, bad: Option<usize>) -> Species {
     s.kernel = Kernel::ALL[(rng.next() % Kernel::ALL.len() as u64) as usize];
     s.slice_geometry = SliceGeometry::ALL[(rng.next() % SliceGeometry::ALL.len() as u64) as usize];
     s.bending = Bending::ALL[(rng.next() % Bending::ALL.len() as u64) as usize];
+    s.bell_coupling = BellCoupling::ALL[(rng.next() % BellCoupling::ALL.len() as u64) as usize];
     s.structural_abs = rng.next().is_multiple_of(2);
     s.gonad_shape = GonadShape::ALL[(rng.next() % GonadShape::ALL.len() as u64) as usize];
     s
@@ -366,7 +368,7 @@ fn random_species_run_inside_the_limits_and_are_refused_outside() {
 #[ignore = "long: every field of every shipped species and the paper's at its least, its greatest and a value between, on a living slice"]
 /// The editor changes one field at a time on living jellyfish: any field at either end of
 /// its range or between, or any of the choices (advection, kernel, geometry, muscle law
-/// and timing, the fringe's drag), given to a living slice of each shipped species and the paper's model, is either
+/// and timing, the fringe's drag, the bending, the bell's coupling), given to a living slice of each shipped species and the paper's model, is either
 /// refused naming a field (a limit joining fields), leaving the slice as it was, or runs
 /// on finite, its outline whole. (A narrower band, which moves the bell's points closer
 /// together, once indexed past the body's points.)
@@ -441,10 +443,14 @@ fn one_field_edited_on_a_living_slice_is_refused_or_runs_on() {
             .chain(Bending::ALL.map(|bending| Species {
                 bending,
                 ..base.clone()
+            }))
+            .chain(BellCoupling::ALL.map(|bell_coupling| Species {
+                bell_coupling,
+                ..base.clone()
             }));
         for edited in choices {
             let what = format!(
-                "{} as {:?}, {:?}, {:?}, {:?}, {:?}, {:?}, {:?}",
+                "{} as {:?}, {:?}, {:?}, {:?}, {:?}, {:?}, {:?}, {:?}",
                 base.name,
                 edited.advection,
                 edited.kernel,
@@ -452,7 +458,8 @@ fn one_field_edited_on_a_living_slice_is_refused_or_runs_on() {
                 edited.muscle_law,
                 edited.muscle_timing,
                 edited.fringe_drag,
-                edited.bending
+                edited.bending,
+                edited.bell_coupling
             );
             edit(base, &edited, what);
         }
