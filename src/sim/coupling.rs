@@ -131,11 +131,11 @@ impl Coupling {
             (&self.u, &fluid.spread_u, Component::U, -1.0),
             (&self.v, &fluid.spread_v, Component::V, 1.0),
         ];
+        let meet = |x: Range<usize>, y: Range<usize>| x.start < y.end && y.start < x.end;
         for p in 0..water.len() {
             let a = water.points()[p];
             for q in p..(p + water.reach() + 1).min(water.len()) {
                 let b = water.points()[q];
-                let meet = |x: Range<usize>, y: Range<usize>| x.start < y.end && y.start < x.end;
                 let meets = |s: &[Stencil]| {
                     meet(s[a].rows(), s[b].rows()) && meet(s[a].columns(), s[b].columns())
                 };

@@ -27,6 +27,7 @@ fn tentacles_drag_the_margin_and_the_body_stays_force_free() {
     let (mut forces, mut slip) = (vec![Vec2::ZERO; n], vec![Vec2::ZERO; n]);
     let mass = 1025.0 * 0.004 * 0.004;
     b.implicit_forces(
+        None,
         &x,
         0.03,
         &vec![mass / 0.03f32.powi(2); x.len()],
@@ -80,7 +81,14 @@ fn a_fringe_pulls_its_margins_water_as_far_as_that_water_can_take_and_the_bell_t
             !whole,
             "the fringe outweighs its water {outweighs} times"
         );
-        b.implicit_forces(&x, dt, &vec![mass / (dt * dt); n], &mut forces, &mut slip);
+        b.implicit_forces(
+            None,
+            &x,
+            dt,
+            &vec![mass / (dt * dt); n],
+            &mut forces,
+            &mut slip,
+        );
         let margins = [b.bell.start, b.bell.end - 1];
         let mut fringe = Vec2::ZERO;
         for (side, range) in b.tentacles.clone().into_iter().enumerate() {
@@ -347,7 +355,7 @@ fn a_fringe_crushed_onto_one_spot_still_solves() {
             .iter()
             .map(|p| 0.5 * 1025.0 * h * h * (p.x - axis).abs().max(0.003) / (dt * dt))
             .collect();
-        b.implicit_forces(&x, dt, &mass, &mut forces, &mut slip);
+        b.implicit_forces(None, &x, dt, &mass, &mut forces, &mut slip);
         assert!(
             forces.iter().chain(&slip).all(|f| f.is_finite()),
             "gap {gap} m: {:?}",

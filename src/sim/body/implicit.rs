@@ -238,26 +238,19 @@ impl Solver {
         out: &mut [Vec2],
     ) {
         self.matrix.clear_to_diagonal(0.0);
-        let lone = if response.is_some() {
-            &[][..]
-        } else {
-            &self.sequence[..]
-        };
-        for (o, &i) in lone.iter().enumerate() {
-            let d = diag(i) as f64;
-            self.matrix.add(2 * o, 2 * o, d);
-            self.matrix.add(2 * o + 1, 2 * o + 1, d);
-        }
-        let images = if response.is_some() {
-            &[][..]
-        } else {
-            &self.mirrored[..]
-        };
-        for &j in images {
-            let place = self.order[j].expect("a mirrored point has a place");
-            let (o, d) = (place.at, diag(j) as f64);
-            self.matrix.add(2 * o, 2 * o, d);
-            self.matrix.add(2 * o + 1, 2 * o + 1, d);
+        // The water each point drags along, unless the water's response stands for it.
+        if response.is_none() {
+            for (o, &i) in self.sequence.iter().enumerate() {
+                let d = diag(i) as f64;
+                self.matrix.add(2 * o, 2 * o, d);
+                self.matrix.add(2 * o + 1, 2 * o + 1, d);
+            }
+            for &j in &self.mirrored {
+                let place = self.order[j].expect("a mirrored point has a place");
+                let (o, d) = (place.at, diag(j) as f64);
+                self.matrix.add(2 * o, 2 * o, d);
+                self.matrix.add(2 * o + 1, 2 * o + 1, d);
+            }
         }
         // Each element once: its explicit force at the predicted positions (the
         // right-hand side) and its stiffness.

@@ -309,7 +309,10 @@ impl Body {
     /// The bell is an immersed boundary: it solves `(m/dt² + K) δ = F(X̃)` and gives the
     /// water `F* = m/dt²·δ`, where `X̃` are the predicted positions, `K` the Gauss–Newton
     /// stiffness and `m` the fluid mass a point drags along. Its forces sum to zero, no net
-    /// force and no net torque, like the springs themselves.
+    /// force and no net torque, like the springs themselves. Given the `water`'s response
+    /// over the step, it solves `(W + K·G) f = F(X̃)` for the forces instead (`G` that
+    /// response; `mass_over_dt2` then only weighs the fringe's pull against the margin's
+    /// water).
     ///
     /// Tentacles are thin cylinders, not the walls an immersed boundary would make of them
     /// in a slice (as sheets they were sucked into the bell and stopped it): each point
@@ -319,6 +322,7 @@ impl Body {
     /// still sum to zero; `slip` is `δ` on tentacle points (zero on the bell's).
     pub(crate) fn implicit_forces(
         &mut self,
+        water: Option<&Response>,
         predicted: &[Vec2],
         dt: f32,
         mass_over_dt2: &[f32],
@@ -330,30 +334,7 @@ impl Body {
             predicted,
             dt,
             mass_over_dt2,
-            water: None,
-        };
-        self.implicit_forces_split(&mut split, solve, forces, slip);
-        self.split = split;
-    }
-
-    /// [`Self::implicit_forces`] with the bell's forces solved against the `water`'s
-    /// response over the step instead of a lone mass a point (`mass_over_dt2` then only
-    /// weighs the fringe's pull against the margin's water).
-    pub(crate) fn coupled_forces(
-        &mut self,
-        water: &Response,
-        predicted: &[Vec2],
-        dt: f32,
-        mass_over_dt2: &[f32],
-        forces: &mut [Vec2],
-        slip: &mut [Vec2],
-    ) {
-        let mut split = std::mem::take(&mut self.split);
-        let solve = Solve {
-            predicted,
-            dt,
-            mass_over_dt2,
-            water: Some(water),
+            water,
         };
         self.implicit_forces_split(&mut split, solve, forces, slip);
         self.split = split;

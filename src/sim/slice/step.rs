@@ -18,7 +18,8 @@ use glam::Vec2;
 /// steps. Along the wall the water is two to four times more, but no one mass fits
 /// every mode: a tangential block twice as heavy takes a third of the meridian's give,
 /// four times as heavy rings (`docs/numerics.md`, "The meridian through a stroke, by
-/// phase").
+/// phase"). A species with `BellCoupling::WaterResponse` solves against the water's
+/// response instead; this mass then weighs only the fringe and the relaxation.
 pub(super) const ADDED_MASS: f32 = 0.5;
 /// A fixed step is split in two (then four …) when the measured flow would cross more
 /// cells than this in it; the split depends only on the state, so it is the same every run.
@@ -91,14 +92,8 @@ impl SliceSim {
             *m = mass / (dt * dt);
             *inverse = dt * dt / mass;
         }
-        match self.species.bell_coupling {
-            BellCoupling::AddedMass => self.body.implicit_forces(
-                &self.predicted,
-                dt,
-                &self.mass_over_dt2,
-                &mut self.forces,
-                &mut self.slip,
-            ),
+        let water = match self.species.bell_coupling {
+            BellCoupling::AddedMass => None,
             BellCoupling::WaterResponse => {
                 if self.water.points() != self.body.bell_solved() {
                     self.water = self.body.water_response();
@@ -106,16 +101,17 @@ impl SliceSim {
                 self.coupling.respond(&self.fluid, dt, &mut self.water);
                 self.body
                     .add_relaxation(&mut self.water, &self.dt2_over_mass);
-                self.body.coupled_forces(
-                    &self.water,
-                    &self.predicted,
-                    dt,
-                    &self.mass_over_dt2,
-                    &mut self.forces,
-                    &mut self.slip,
-                );
+                Some(&self.water)
             }
-        }
+        };
+        self.body.implicit_forces(
+            water,
+            &self.predicted,
+            dt,
+            &self.mass_over_dt2,
+            &mut self.forces,
+            &mut self.slip,
+        );
         self.coupling.spread(&mut self.fluid, &self.forces);
 
         self.fluid.step(dt);
