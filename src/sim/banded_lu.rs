@@ -53,37 +53,58 @@ impl BandedLu {
     /// Factorises in place (`A = L·U`, `L` unit lower) and solves `A x = rhs`, overwriting
     /// `rhs` with `x`. Returns false at a zero or non-finite pivot.
     pub(crate) fn factor_and_solve(&mut self, rhs: &mut [f64]) -> bool {
-        let (n, kl, ku, w) = (self.n, self.lower, self.upper, self.width());
-        let a = &mut self.entries;
-        for k in 0..n {
-            let pivot = a[k * w + kl];
-            if pivot == 0.0 || !pivot.is_finite() {
-                return false;
-            }
-            let inverse = 1.0 / pivot;
-            let last = (n - 1).min(k + ku);
-            for r in k + 1..=(n - 1).min(k + kl) {
-                let l = a[r * w + k + kl - r] * inverse;
-                if l == 0.0 {
-                    continue;
-                }
-                // Row k's entries from column k + 1 on, subtracted from row r's.
-                let (head, tail) = a.split_at_mut(r * w);
-                let pivot_row = &head[k * w + kl + 1..][..last - k];
-                let row = &mut tail[k + 1 + kl - r..][..last - k];
-                for (x, &p) in row.iter_mut().zip(pivot_row) {
-                    *x -= l * p;
-                }
-                rhs[r] -= l * rhs[k];
-            }
+        let mut pivots_ok = true;
+        eliminate_dispatch(self, rhs, &mut pivots_ok);
+        if !pivots_ok {
+            return false;
         }
+        let (n, kl, ku, w) = (self.n, self.lower, self.upper, self.width());
         for r in (0..n).rev() {
-            let row = &a[r * w..][..w];
+            let row = &self.entries[r * w..][..w];
             let last = (n - 1).min(r + ku);
             let sum = (r + 1..=last).fold(rhs[r], |s, c| s - row[c + kl - r] * rhs[c]);
             rhs[r] = sum / row[kl];
         }
         true
+    }
+}
+
+/// [`eliminate`] four lanes wide where the processor has AVX (the same operations in the
+/// same order, so the same bits).
+fn eliminate_dispatch(lu: &mut BandedLu, rhs: &mut [f64], ok: &mut bool) {
+    eight_wide!(eliminate, (lu: &mut BandedLu, rhs: &mut [f64], ok: &mut bool))
+}
+
+/// Gaussian elimination in order, `rhs` carried along; `ok` cleared at a zero or
+/// non-finite pivot (the matrix is then left part-way).
+#[inline(always)]
+fn eliminate(lu: &mut BandedLu, rhs: &mut [f64], ok: &mut bool) {
+    let (n, kl, ku, w) = (lu.n, lu.lower, lu.upper, lu.width());
+    let a = &mut lu.entries;
+    for k in 0..n {
+        let pivot = a[k * w + kl];
+        if pivot == 0.0 || !pivot.is_finite() {
+            *ok = false;
+            return;
+        }
+        let inverse = 1.0 / pivot;
+        let span = (n - 1).min(k + ku) - k;
+        let (head, tail) = a.split_at_mut((k + 1) * w);
+        // Row k's entries from column k + 1 on, subtracted from each row below.
+        let pivot_row = &head[k * w + kl + 1..][..span];
+        let rhs_k = rhs[k];
+        for below in 1..=(n - 1 - k).min(kl) {
+            // Row k + below: its column k at `kl − below`, the next ones after it.
+            let row = &mut tail[(below - 1) * w + kl - below..][..=span];
+            let l = row[0] * inverse;
+            if l == 0.0 {
+                continue;
+            }
+            for (x, &p) in row[1..].iter_mut().zip(pivot_row) {
+                *x -= l * p;
+            }
+            rhs[k + below] -= l * rhs_k;
+        }
     }
 }
 

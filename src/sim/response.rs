@@ -14,9 +14,12 @@
 /// water: the kernel reaches a few cells and the points lie half a cell apart along the
 /// chain (twice as far apart in a planar bell's alternating order).
 const MOST_APART: usize = 24;
+/// A row's entries: both components of every point within [`MOST_APART`].
+const WIDTH: usize = 2 * (2 * MOST_APART + 1);
 
 /// `G` over the bell solver's points, in its order: component by component (the overlaps
-/// carry a force's x to displacements' x only, and so does the relaxation), banded.
+/// carry a force's x to displacements' x only, and so does the relaxation), banded, the
+/// two components of each entry side by side.
 #[derive(Clone, Default)]
 pub(crate) struct Response {
     /// Each solved point (a body index), in the solver's order.
@@ -25,20 +28,21 @@ pub(crate) struct Response {
     imaged: Vec<bool>,
     /// The widest coupling set since the last [`Self::clear`], in the solver's order.
     band: usize,
-    /// Per component, row `p` from `p − MOST_APART` to `p + MOST_APART`.
-    entries: [Vec<f32>; 2],
+    /// Row `p` from `p − MOST_APART` to `p + MOST_APART`, each entry's x and y side by
+    /// side (the order the solve's unknowns interleave them in).
+    entries: Vec<f32>,
 }
 
 impl Response {
     /// An empty response over `points` (in the solver's order), `imaged[p]` where point
     /// `p` has a mirror image.
     pub(crate) fn new(points: Vec<usize>, imaged: Vec<bool>) -> Self {
-        let size = points.len() * (2 * MOST_APART + 1);
+        let size = points.len() * WIDTH;
         Self {
             points,
             imaged,
             band: 0,
-            entries: [vec![0.0; size], vec![0.0; size]],
+            entries: vec![0.0; size],
         }
     }
 
@@ -69,11 +73,9 @@ impl Response {
 
     /// No response at all (only the band last written needs clearing).
     pub(crate) fn clear(&mut self) {
-        let (width, band) = (2 * MOST_APART + 1, self.band);
-        for entries in &mut self.entries {
-            for row in entries.chunks_exact_mut(width) {
-                row[MOST_APART - band..=MOST_APART + band].fill(0.0);
-            }
+        let band = self.band;
+        for row in self.entries.chunks_exact_mut(WIDTH) {
+            row[2 * (MOST_APART - band)..2 * (MOST_APART + band + 1)].fill(0.0);
         }
         self.band = 0;
     }
@@ -85,14 +87,14 @@ impl Response {
             return;
         }
         self.band = self.band.max(apart);
-        self.entries[c][p * (2 * MOST_APART + 1) + q + MOST_APART - p] += value;
+        self.entries[p * WIDTH + 2 * (q + MOST_APART - p) + c] += value;
     }
 
-    /// Component `c`'s displacements of point `p` for a unit force on each of `forced`
-    /// (within [`Self::reach`] of `p`).
+    /// Point `p`'s displacements for a unit force on each of `forced` (within
+    /// [`Self::reach`] of `p`), x and y of each side by side.
     #[inline]
-    pub(crate) fn row(&self, c: usize, p: usize, forced: std::ops::Range<usize>) -> &[f32] {
-        let start = p * (2 * MOST_APART + 1) + MOST_APART - p;
-        &self.entries[c][start + forced.start..start + forced.end]
+    pub(crate) fn row(&self, p: usize, forced: std::ops::Range<usize>) -> &[f32] {
+        let start = p * WIDTH + 2 * (MOST_APART - p);
+        &self.entries[start + 2 * forced.start..start + 2 * forced.end]
     }
 }

@@ -322,17 +322,29 @@ impl Solver {
             // Column `col` of row `r` is at `col + band − r`.
             let row = self.coupled.row_mut(r);
             row[band] = self.counts[r / 2];
-            for q in r.saturating_sub(kb)..(r + kb + 1).min(dofs) {
-                let k = self.matrix.get(r, q);
-                if k == 0.0 {
-                    continue;
-                }
-                let (point, c) = (q / 2, q % 2);
-                let first = point.saturating_sub(gb);
-                let g = response.row(c, point, first..(point + gb + 1).min(n));
-                let at = 2 * first + c + band - r;
-                for (slot, &g) in row[at..].iter_mut().step_by(2).zip(g) {
-                    *slot += k * g as f64;
+            // Point by point along `K`'s row: its x and y unknowns' stiffness times `G`'s
+            // x and y rows, which lie side by side, so one pass adds both.
+            for s in r.saturating_sub(kb) / 2..=((r + kb).min(dofs - 1) / 2) {
+                let within = |q: usize| q + kb >= r && q <= r + kb;
+                let k = [0, 1].map(|c| {
+                    let q = 2 * s + c;
+                    if within(q) { self.matrix.get(r, q) } else { 0.0 }
+                });
+                let (first, last) = (s.saturating_sub(gb), (s + gb + 1).min(n));
+                let g = response.row(s, first..last);
+                if within(2 * s) && within(2 * s + 1) {
+                    let slots = &mut row[2 * first + band - r..][..2 * (last - first)];
+                    for (slot, g) in slots.chunks_exact_mut(2).zip(g.chunks_exact(2)) {
+                        slot[0] += k[0] * g[0] as f64;
+                        slot[1] += k[1] * g[1] as f64;
+                    }
+                } else {
+                    // At the ends of `K`'s band only one of the two couples.
+                    for c in (0..2).filter(|&c| k[c] != 0.0) {
+                        for (j, g) in (first..last).zip(g.chunks_exact(2)) {
+                            row[2 * j + c + band - r] += k[c] * g[c] as f64;
+                        }
+                    }
                 }
             }
         }
