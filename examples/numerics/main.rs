@@ -14,10 +14,12 @@
 //! `--species` (the paper's model is `paper`) and `--geometry planar|axisymmetric` it
 //! runs only those, as a profiler wants.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|strain|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...]`
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|strain|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...] [--steps 0.5,1,2,...]`
 //!
 //! `--sizes` runs each species resized to those multiples of its diameter, its pulse rate its
-//! animal's at each size (`Species::resized`).
+//! animal's at each size (`Species::resized`). `--steps` sets the multiples of each
+//! species' own steps per cycle that `timestep` runs (1, 2, 4, 8 and 16 without it; below
+//! 1, fewer).
 
 mod calibration;
 #[path = "../common/species.rs"]
@@ -79,7 +81,15 @@ fn main() {
         stagger(&species, from, to);
     }
     if matches!(which, "timestep") {
-        timestep(&species, from, to);
+        let multiples: Vec<f32> = common::value(&args, "--steps")
+            .map(|list| {
+                list.split(',')
+                    .filter_map(|k| k.trim().parse().ok())
+                    .filter(|k: &f32| *k > 0.0)
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![1.0, 2.0, 4.0, 8.0, 16.0]);
+        timestep(&species, &multiples, from, to);
     }
     if matches!(which, "strain") {
         strain::by_phase(&species, from, to);

@@ -28,13 +28,13 @@ impl Run {
     }
 }
 
-/// A slice of `species` taking `finer` times its fixed steps per cycle (a measurement
-/// only: a shipped slice always takes its species' own steps).
-pub fn slice_in_steps(species: &Species, finer: u32) -> SliceSim {
+/// A slice of `species` taking `finer` times its fixed steps per cycle, rounded (a
+/// measurement only: a shipped slice always takes its species' own steps; below 1, fewer).
+pub fn slice_in_steps(species: &Species, finer: f32) -> SliceSim {
     let mut sim = SliceSim::new(species).expect("valid species");
-    if finer > 1 {
-        let steps = SliceSim::steps_per_cycle(species) * finer;
-        sim.set_clock(FixedClock::new(species.period(), steps));
+    if finer != 1.0 {
+        let steps = (SliceSim::steps_per_cycle(species) as f32 * finer).round() as u32;
+        sim.set_clock(FixedClock::new(species.period(), steps.max(1)));
     }
     sim
 }
@@ -42,12 +42,12 @@ pub fn slice_in_steps(species: &Species, finer: u32) -> SliceSim {
 /// Swims `species` with `advance(frame)` calls and records the distance at each cycle's
 /// first step (exactly phase 0, whatever the frame rate).
 pub fn swim(species: &Species, frame: f32, from: u32, to: u32) -> Run {
-    swim_in_steps(species, 1, frame, from, to)
+    swim_in_steps(species, 1.0, frame, from, to)
 }
 
 /// [`swim`] with `finer` times the species' fixed steps per cycle (a time-step convergence
 /// check: a shipped slice always takes its species' own steps).
-pub fn swim_in_steps(species: &Species, finer: u32, frame: f32, from: u32, to: u32) -> Run {
+pub fn swim_in_steps(species: &Species, finer: f32, frame: f32, from: u32, to: u32) -> Run {
     let mut sim = slice_in_steps(species, finer);
     let mut boundaries = vec![0.0f64];
     let clock = Instant::now();

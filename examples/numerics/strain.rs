@@ -8,7 +8,7 @@ use bevy_jellyfish::Species;
 /// How many parts of the cycle the strain is averaged over.
 const PARTS: usize = 10;
 /// The steps per cycle measured, in multiples of the species' own.
-const FINER: [u32; 3] = [1, 4, 16];
+const FINER: [f32; 3] = [1.0, 4.0, 16.0];
 
 /// `SliceSim::meridian_strain`, percent, averaged over each tenth of the cycle through
 /// cycles `from..to` (60 Hz frames), and its least and greatest there.
@@ -40,7 +40,7 @@ pub fn by_phase(species: &[Species], from: u32, to: u32) {
 }
 
 /// Each part's mean strain, and the least and greatest, over cycles `from..to`.
-fn strain_by_phase(s: &Species, finer: u32, from: u32, to: u32) -> ([f32; PARTS], f32, f32) {
+fn strain_by_phase(s: &Species, finer: f32, from: u32, to: u32) -> ([f32; PARTS], f32, f32) {
     let mut sim = slice_in_steps(s, finer);
     let (mut sums, mut counts) = ([0.0f64; PARTS], [0u32; PARTS]);
     let (mut least, mut greatest) = (f32::MAX, f32::MIN);

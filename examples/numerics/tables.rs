@@ -109,18 +109,21 @@ pub fn convergence(species: &[Species], from: u32, to: u32) {
     }
 }
 
-pub fn timestep(species: &[Species], from: u32, to: u32) {
-    const FINER: [u32; 5] = [1, 2, 4, 8, 16];
+/// Swim per cycle with each multiple of the species' own steps per cycle in `multiples`
+/// (fewer below 1), and the subumbrella's strain.
+pub fn timestep(species: &[Species], multiples: &[f32], from: u32, to: u32) {
+    let names: Vec<String> = multiples.iter().map(|k| format!("{k}×")).collect();
     println!(
-        "\n### Time step: swim per cycle (cycles {from}–{to}) with the species' fixed step, \
-         and 2, 4, 8 and 16 times finer (60 Hz frames)\n"
+        "\n### Time step: swim per cycle (cycles {from}–{to}) with {} the species' fixed \
+         steps per cycle (60 Hz frames)\n",
+        names.join(", ")
     );
-    println!("| species (grid, steps per cycle) | 1× | 2× | 4× | 8× | 16× | spread |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| species (grid, steps per cycle) | {} | spread |", names.join(" | "));
+    println!("|---|{}---|", "---|".repeat(names.len()));
     let runs: Vec<Vec<Run>> = species
         .iter()
         .map(|s| {
-            parallel(FINER.to_vec(), |&k| {
+            parallel(multiples.to_vec(), |&k| {
                 swim_in_steps(s, k, 1.0 / 60.0, from, to)
             })
         })
@@ -140,8 +143,8 @@ pub fn timestep(species: &[Species], from: u32, to: u32) {
         "\nThe subumbrella's strain over the same cycles, least and greatest \
          (`SliceSim::meridian_strain`):\n"
     );
-    println!("| species | 1× | 2× | 4× | 8× | 16× |");
-    println!("|---|---|---|---|---|---|");
+    println!("| species | {} |", names.join(" | "));
+    println!("|---|{}", "---|".repeat(names.len()));
     for (s, runs) in species.iter().zip(&runs) {
         let cells: Vec<String> = runs
             .iter()
