@@ -911,6 +911,69 @@ fn the_bell_keeps_its_length_as_the_step_shrinks(geometry: SliceGeometry) {
     }
 }
 
+#[test]
+#[ignore = "long: the two rowers at 1, 3/4 and 1/2 of their steps, each coupling, 20 strokes"]
+/// The coupled step's give, not the water, is what holds a rower to its steps: with the
+/// added mass half the steps lose a fifth of the stroke and more, while with the water's
+/// response in the solve the stroke holds within a few percent at three quarters and at
+/// half of them (the water's Courant number stays under a cell a step). A response that
+/// lost part of itself (a row, a mirror image, the relaxation's taps) would give again
+/// and fail this (`docs/numerics.md`, "Fewer steps with the water's response").
+fn on_the_waters_response_a_rower_keeps_its_stroke_with_fewer_steps() {
+    let stroke = |(s, multiple): &(Species, f32)| {
+        let mut sim = SliceSim::new(s).unwrap();
+        let steps = (SliceSim::steps_per_cycle(s) as f32 * multiple).round() as u32;
+        sim.set_clock(FixedClock::new(s.period(), steps));
+        let mut at_phase_0 = Vec::new();
+        while sim.cycle() < 20 {
+            sim.advance_with(1.0 / 60.0, |sim| {
+                if sim.phase() == 0.0 && sim.cycle() >= 10 {
+                    at_phase_0.push(sim.swim_distance());
+                }
+            });
+        }
+        let swum = at_phase_0.last().unwrap() - at_phase_0.first().unwrap();
+        swum / ((at_phase_0.len() - 1) as f32 * s.diameter)
+    };
+    for added in [Species::aurelia(), Species::aequorea()] {
+        let water = Species {
+            bell_coupling: BellCoupling::WaterResponse,
+            ..added.clone()
+        };
+        let runs = [
+            (added.clone(), 1.0),
+            (added.clone(), 0.5),
+            (water.clone(), 1.0),
+            (water.clone(), 0.75),
+            (water, 0.5),
+        ];
+        let [own, half, held, three_quarters, held_half] = in_parallel(&runs, stroke)[..] else {
+            unreachable!()
+        };
+        println!(
+            "{}: the added mass {own:.3} D a stroke with its steps, {half:.3} with half; the \
+             water's response {held:.3}, {three_quarters:.3} with three quarters, \
+             {held_half:.3} with half",
+            added.name
+        );
+        assert!(
+            half < 0.85 * own,
+            "{}: the added mass {own} then {half}",
+            added.name
+        );
+        assert!(
+            (three_quarters / held - 1.0).abs() <= 0.04,
+            "{}: the response {held} then {three_quarters}",
+            added.name
+        );
+        assert!(
+            (held_half / held - 1.0).abs() <= 0.08,
+            "{}: the response {held} then {held_half}",
+            added.name
+        );
+    }
+}
+
 in_both_geometries!(#[ignore = "long: 20 strokes at Re 1 and at sea water's"] fn a_stroke_hardly_swims_where_viscosity_rules);
 fn a_stroke_hardly_swims_where_viscosity_rules(geometry: SliceGeometry) {
     let base = aurelia(geometry);
