@@ -118,7 +118,10 @@ pub fn timestep(species: &[Species], multiples: &[f32], from: u32, to: u32) {
          steps per cycle (60 Hz frames)\n",
         names.join(", ")
     );
-    println!("| species (grid, steps per cycle) | {} | spread |", names.join(" | "));
+    println!(
+        "| species (grid, steps per cycle) | {} | spread |",
+        names.join(" | ")
+    );
     println!("|---|{}---|", "---|".repeat(names.len()));
     let runs: Vec<Vec<Run>> = species
         .iter()

@@ -328,7 +328,11 @@ impl Solver {
                 let within = |q: usize| q + kb >= r && q <= r + kb;
                 let k = [0, 1].map(|c| {
                     let q = 2 * s + c;
-                    if within(q) { self.matrix.get(r, q) } else { 0.0 }
+                    if within(q) {
+                        self.matrix.get(r, q)
+                    } else {
+                        0.0
+                    }
                 });
                 let (first, last) = (s.saturating_sub(gb), (s + gb + 1).min(n));
                 let g = response.row(s, first..last);
