@@ -81,15 +81,7 @@ fn main() {
         stagger(&species, from, to);
     }
     if matches!(which, "timestep") {
-        let multiples: Vec<f32> = common::value(&args, "--steps")
-            .map(|list| {
-                list.split(',')
-                    .filter_map(|k| k.trim().parse().ok())
-                    .filter(|k: &f32| *k > 0.0)
-                    .collect()
-            })
-            .unwrap_or_else(|| vec![1.0, 2.0, 4.0, 8.0, 16.0]);
-        timestep(&species, &multiples, from, to);
+        timestep(&species, &step_multiples(&args), from, to);
     }
     if matches!(which, "strain") {
         strain::by_phase(&species, from, to);
@@ -103,6 +95,23 @@ fn main() {
     if matches!(which, "convergence" | "all") {
         convergence(&species, from, to);
     }
+}
+
+/// The multiples of each species' own steps per cycle that `--steps 0.5,1,2,...` lists
+/// (1, 2, 4, 8 and 16 without it).
+fn step_multiples(args: &[String]) -> Vec<f32> {
+    let Some(list) = common::value(args, "--steps") else {
+        return vec![1.0, 2.0, 4.0, 8.0, 16.0];
+    };
+    list.split(',')
+        .map(|k| match k.trim().parse::<f32>() {
+            Ok(k) if k > 0.0 && k <= 1024.0 => k,
+            _ => common::refuse(&format!(
+                "numerics: --steps takes multiples of the species' steps per cycle above 0 \
+                 and at most 1024, not {k:?}"
+            )),
+        })
+        .collect()
 }
 
 /// `s` resized (`Species::resized`: every length, and its animal's pulse rate at the size)
