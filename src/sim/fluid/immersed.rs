@@ -69,6 +69,16 @@ impl Fluid {
         s
     }
 
+    /// Where `p` lies among the faces of component `c`, in face spacings, and how many
+    /// faces there are across and along.
+    pub(crate) fn in_faces(&self, c: Component, p: Vec2) -> ((f32, f32), (usize, usize)) {
+        let n = self.n;
+        match c {
+            Component::U => ((p.x / self.h, p.y / self.h - 0.5), (n + 1, n)),
+            Component::V => ((p.x / self.h - 0.5, p.y / self.h), (n, n + 1)),
+        }
+    }
+
     /// Whether a point of a slice solved on its half ([`Fluid::half`]) lies so far past
     /// the axis that no face of its stencils is in the solved half: what it spreads there
     /// is dropped (the projection mirrors the solved half over it), and what it reads is
@@ -85,15 +95,13 @@ impl Fluid {
 
     /// [`Self::stencil`], written over `out`.
     pub(crate) fn locate(&self, c: Component, p: Vec2, out: &mut Stencil) {
-        let n = self.n;
-        let (gx, gy, nx, ny) = match c {
-            Component::U => (p.x / self.h, p.y / self.h - 0.5, n + 1, n),
-            Component::V => (p.x / self.h - 0.5, p.y / self.h, n, n + 1),
-        };
-        out.locate(self.kernel, (gx, gy), (nx, ny), self.kernel_stretch);
+        let (at, faces) = self.in_faces(c, p);
+        out.locate(self.kernel, at, faces, self.kernel_stretch);
         if let Some(rings) = self.rings() {
             let reach = reach(self.kernel, self.kernel_stretch) * self.h;
-            rings.weigh_by_volume_near_axis(c, out, reach);
+            if rings.within_reach_of_axis(p.x, reach) {
+                rings.weigh_by_volume_near_axis(c, out, reach);
+            }
         }
     }
 }

@@ -139,6 +139,49 @@ fn a_ring_on_the_axis_spreads_as_a_point_and_a_far_one_as_a_ring() {
 }
 
 #[test]
+fn a_stencil_the_axis_test_passes_over_is_one_the_reweighing_leaves_alone() {
+    // `Fluid::locate` reweighs a stencil near the axis only where
+    // `Rings::within_reach_of_axis` says it may reach there: a bound on the taps, which
+    // must never skip a stencil the reweighing would have changed. Even and odd grids,
+    // the kernel at several widths, both components, points across the box and past it.
+    for (n, stretch) in [
+        (41, 1.0),
+        (40, 1.0),
+        (60, 1.42),
+        (61, 2.7),
+        (40, 4.0),
+        (16, 1.0),
+    ] {
+        let mut f = Fluid::new(n, 0.005, 0.0, 1000.0);
+        f.set_geometry(SliceGeometry::Axisymmetric);
+        f.kernel_stretch = stretch;
+        let reach = crate::sim::kernel::reach(f.kernel, stretch) * f.h;
+        let rings = f.rings().unwrap();
+        let (mut skipped, mut changed) = (0, 0);
+        for k in -40..=(n as i32 * 10 + 40) {
+            let p = Vec2::new(k as f32 * f.h / 10.0, 0.0513);
+            for c in [Component::U, Component::V] {
+                let mut s = crate::sim::kernel::Stencil::default();
+                let (at, faces) = f.in_faces(c, p);
+                s.locate(f.kernel, at, faces, stretch);
+                let before: Vec<(usize, f32)> = s.iter().collect();
+                rings.weigh_by_volume_near_axis(c, &mut s, reach);
+                let moved = s.iter().collect::<Vec<_>>() != before;
+                changed += usize::from(moved);
+                if !rings.within_reach_of_axis(p.x, reach) {
+                    skipped += 1;
+                    assert!(!moved, "n {n}, stretch {stretch}, {c:?} at x = {}", p.x);
+                }
+            }
+        }
+        assert!(
+            skipped > 0 && changed > 0,
+            "n {n}: {skipped} skipped, {changed} changed"
+        );
+    }
+}
+
+#[test]
 fn points_past_the_axis_out_of_reach_are_their_partners_mirrors() {
     let mut f = swirl(41);
     f.project();

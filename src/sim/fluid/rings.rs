@@ -43,6 +43,13 @@ pub(crate) struct Rings {
     inverse_cell: Vec<f32>,
     /// Columns solved: from the left wall to the axis column, `n/2 + 1`.
     pub(crate) solved: usize,
+    /// Where the axis is, m from the left wall; where a stencil's points are read from
+    /// (the first and last cell centres: a point past them is located as if on them);
+    /// and the least radius of a wall's faces or cells: what
+    /// [`Rings::within_reach_of_axis`] reads.
+    axis: f32,
+    located: (f32, f32),
+    wall: f32,
     /// A no-slip outer wall for the viscous term (a pipe: test set-ups only; the slice's
     /// wall is free-slip, as the plane's are).
     pub(crate) no_slip_wall: bool,
@@ -64,7 +71,7 @@ impl Rings {
     /// The radii for `n` cells of size `h` about the centre of column `n/2`.
     pub(crate) fn new(n: usize, h: f32) -> Self {
         let c = n / 2;
-        let face = (0..=n)
+        let face: Vec<f32> = (0..=n)
             .map(|i| (i as f32 - c as f32 - 0.5).abs() * h)
             .collect();
         let cell: Vec<f32> = (0..n)
@@ -76,11 +83,17 @@ impl Rings {
                 }
             })
             .collect();
+        let wall = [face[0], face[n], cell[0], cell[n - 1]]
+            .into_iter()
+            .fold(f32::MAX, f32::min);
         Self {
             face,
             inverse_cell: cell.iter().map(|r| 1.0 / r).collect(),
             cell,
             solved: c + 1,
+            axis: (c as f32 + 0.5) * h,
+            located: (0.5 * h, (n as f32 - 0.5) * h),
+            wall,
             no_slip_wall: false,
             across_operator: Across::Rings,
             solver: RingPoissonSolver::new(c + 1, n, h),
@@ -101,6 +114,9 @@ impl Rings {
             cell: vec![1.0; n],
             inverse_cell: vec![1.0; n],
             solved: c + 1,
+            axis: (c as f32 + 0.5) * h,
+            located: (0.5 * h, (n as f32 - 0.5) * h),
+            wall: 1.0,
             no_slip_wall: false,
             across_operator: Across::MirroredPlane,
             solver: RingPoissonSolver::across(Across::MirroredPlane, c + 1, n, h),
@@ -119,6 +135,18 @@ impl Rings {
     /// 0.03). Weighed by volume there, a ring on the axis is a point spread by the
     /// kernel in three dimensions, smooth across the axis; a ring `2·reach` or further
     /// out is untouched.
+    /// Whether a stencil of a point `x` (m from the left wall) may reach a face within
+    /// `reach` (m) of the axis, so that [`Self::weigh_by_volume_near_axis`] could change
+    /// it: its taps lie within `reach` of `x` (held inside the box, as the stencil's
+    /// position is), so none does from `2·reach` or further out, unless the box itself is
+    /// narrower than that. A cheap test first, for the points far from the axis.
+    #[inline]
+    pub(crate) fn within_reach_of_axis(&self, x: f32, reach: f32) -> bool {
+        let x = x.clamp(self.located.0, self.located.1);
+        (x - self.axis).abs() < 2.0 * reach || self.wall < reach
+    }
+
+    #[inline(never)]
     pub(crate) fn weigh_by_volume_near_axis(
         &self,
         c: super::Component,
