@@ -8,19 +8,25 @@
 //!
 //! `calibration` shows the paper's findings on [`Species::paper`].
 //!
+//! `animals` reads issue 28's checks of an animal (`tests/slice.rs`: its stroke, refill,
+//! margin, sweep, stagger and fringe) at each of `--sizes` (half, once and twice its size
+//! without it), and how its stroke spreads across them, in seconds: a candidate
+//! calibration (`--set`, `--steps`) read before the long tests are run on it.
+//!
 //! `fingerprint` runs every shipped species and the paper's model in both slice geometries
 //! for `--to` cycles and prints a hash of every cycle's distance, bit for bit, and the
 //! cost: a refactor meant to leave the physics alone must leave the hashes alone. With
 //! `--species` (the paper's model is `paper`) and `--geometry planar|axisymmetric` it
 //! runs only those, as a profiler wants.
 //!
-//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|strain|calibration|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...] [--steps 0.5,1,2,...]`
+//! `cargo run --release --no-default-features --example numerics -- [frames|grids|convergence|stagger|timestep|strain|calibration|animals|fingerprint|all] [--from 10] [--to 30] [--species name] [--geometry name] [--set field=value ...] [--sizes 0.25,2,...] [--steps 0.5,1,2,...]`
 //!
 //! `--sizes` runs each species resized to those multiples of its diameter, its pulse rate its
 //! animal's at each size (`Species::resized`). `--steps` sets the multiples of each
 //! species' own steps per cycle that `timestep` runs (1, 2, 4, 8 and 16 without it; below
 //! 1, fewer).
 
+mod animals;
 mod calibration;
 #[path = "../common/species.rs"]
 mod common;
@@ -29,6 +35,7 @@ mod run;
 mod strain;
 mod tables;
 
+use animals::animals;
 use bevy_jellyfish::{SliceGeometry, Species};
 use calibration::calibration;
 use common::{overrides, shipped_species, with_overrides};
@@ -46,12 +53,24 @@ fn main() {
     let which = args.first().map(String::as_str).unwrap_or("all");
     let overrides = overrides(&args);
     let only = common::value(&args, "--species");
-    let species: Vec<Species> = shipped_species()
+    let animals_at_sizes: Vec<Vec<Species>> = shipped_species()
         .into_iter()
         .filter(|s| only.is_none_or(|o| s.name.eq_ignore_ascii_case(o)))
-        .map(|s| with_overrides(s, &overrides))
-        .flat_map(|s| at_sizes(&s, &args))
+        .map(|s| {
+            let s = with_overrides(s, &overrides);
+            match which {
+                // An animal is read at half, once and twice its size unless told otherwise.
+                "animals" if common::value(&args, "--sizes").is_none() => [0.5, 1.0, 2.0]
+                    .map(|k| Species {
+                        name: format!("{} {:.1} mm", s.name, 1000.0 * k * s.diameter),
+                        ..s.resized(k * s.diameter)
+                    })
+                    .to_vec(),
+                _ => at_sizes(&s, &args),
+            }
+        })
         .collect();
+    let species: Vec<Species> = animals_at_sizes.iter().flatten().cloned().collect();
     // The paper's findings (staggering, Reynolds numbers) are shown on the paper's model.
     let paper = with_overrides(Species::paper(), &overrides);
     if matches!(which, "frames" | "all") {
@@ -88,6 +107,12 @@ fn main() {
     }
     if matches!(which, "calibration") {
         calibration(&paper);
+    }
+    if matches!(which, "animals") {
+        let steps = common::value(&args, "--steps").map_or(1.0, |_| step_multiples(&args)[0]);
+        for sizes in &animals_at_sizes {
+            animals(sizes, steps);
+        }
     }
     if matches!(which, "crumples") {
         crumples(&species, flag("--cycles", 300));
