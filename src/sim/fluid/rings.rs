@@ -43,10 +43,10 @@ pub(crate) struct Rings {
     inverse_cell: Vec<f32>,
     /// Columns solved: from the left wall to the axis column, `n/2 + 1`.
     pub(crate) solved: usize,
-    /// Where the axis is, m from the left wall; where a stencil's points are read from
-    /// (the first and last cell centres: a point past them is located as if on them);
-    /// and the least radius of a wall's faces or cells: what
-    /// [`Rings::within_reach_of_axis`] reads.
+    /// Where the axis is, m from the left wall; the span a point is held within for the
+    /// test, half a cell inside the walls (a stencil is located inside the box, so this
+    /// only brings a point past a wall nearer the axis); and the least radius of a
+    /// wall's faces or cells: what [`Rings::within_reach_of_axis`] reads.
     axis: f32,
     located: (f32, f32),
     wall: f32,
