@@ -4,6 +4,7 @@
 //! candidate calibration (`--set field=value`, `--steps f`) before the long tests are run
 //! on it. Each line says which check of the tests it reads, and its bounds.
 
+use crate::common::refuse;
 use crate::run::{parallel, slice_in_steps, spread};
 use bevy_jellyfish::Species;
 
@@ -19,16 +20,28 @@ struct Size {
     /// Cycles 20–40: its own fringe, none, one three times as long; staggered and unison.
     fringe: [f32; 3],
     unison: f32,
-    /// The sweep's peak and its bell's twice as stiff, over its own rate; its longest
+    /// The sweep's peak and its bell's twice as stiff (none where that bell is not a
+    /// valid species: too stiff to bend, grown large), over its own rate; its longest
     /// 20 s over the shorter of its two ends'.
     peak: f32,
-    stiffer: f32,
+    stiffer: Option<f32>,
     above_ends: f32,
+    /// How far the sweep went, times its own rate (2.5 unless the species' limit on the
+    /// pulse rate stopped it).
+    swept_to: f32,
 }
 
 /// The scorecard of `sizes` (one animal, resized), each taking `steps` times its own
 /// steps per cycle.
 pub fn animals(sizes: &[Species], steps: f32) {
+    for s in sizes {
+        if let Err(e) = s.validate() {
+            refuse(&format!(
+                "numerics animals: {} is not a valid species: {e}",
+                s.name
+            ));
+        }
+    }
     println!(
         "\n### {}: the animal's checks (`tests/slice.rs`), {steps}× its steps\n",
         sizes[0].name.split(' ').next().unwrap_or_default()
@@ -43,14 +56,20 @@ pub fn animals(sizes: &[Species], steps: f32) {
     for (s, r) in sizes.iter().zip(&runs) {
         let slower = |d: f32| 100.0 * (1.0 - d / r.fringe[1]);
         println!(
-            "| {:.0} mm | {:.3}, {:.3} | {:+.3} | {:.2} | {:.2}, {:.2} | {:.2} | {:+.0}% | {:.1}%, {:.1}% |",
+            "| {:.0} mm | {:.3}, {:.3} | {:+.3} | {:.2} | {:.2}, {}{} | {:.2} | {:+.0}% | {:.1}%, {:.1}% |",
             1000.0 * s.diameter,
             r.stroke,
             r.bare,
             r.refill,
             r.margin,
             r.peak,
-            r.stiffer,
+            r.stiffer
+                .map_or("(twice as stiff: invalid)".into(), |f| format!("{f:.2}")),
+            if r.swept_to < 2.5 {
+                format!(" (swept to {:.1}×, the pulse rate's limit)", r.swept_to)
+            } else {
+                String::new()
+            },
             r.above_ends,
             100.0 * (r.fringe[0] / r.unison - 1.0),
             slower(r.fringe[0]),
@@ -80,9 +99,18 @@ fn size(s: &Species, steps: f32) -> Size {
         f(&mut v);
         v
     };
+    // A sixth to two and a half times its own rate, as far as a species may beat (a small
+    // bell's own rate is high: its sweep stops at the limit).
     let natural = s.natural_pulse_rate();
-    let rates: Vec<f32> = (1..=15).map(|k| natural * k as f32 / 6.0).collect();
-    let stiffer = with(&|v| v.elastic_modulus *= 2.0);
+    let at = |f: f32| Species {
+        contraction_frequency: f,
+        ..s.clone()
+    };
+    let rates: Vec<f32> = (1..=15)
+        .map(|k| natural * k as f32 / 6.0)
+        .filter(|&f| at(f).validate().is_ok())
+        .collect();
+    let stiffer = Some(with(&|v| v.elastic_modulus *= 2.0)).filter(|v| v.validate().is_ok());
     let mut jobs = vec![
         Job::Stroke(s.clone()),
         Job::Stroke(with(&|v| v.tentacle_length = 0.0)),
@@ -91,7 +119,7 @@ fn size(s: &Species, steps: f32) -> Size {
         jobs.push(Job::Cycles(with(&|v| v.tentacle_length *= k)));
     }
     jobs.push(Job::Cycles(with(&|v| v.expansion_stagger = 0.0)));
-    for base in [s, &stiffer] {
+    for base in std::iter::once(s).chain(&stiffer) {
         for &f in &rates {
             jobs.push(Job::Seconds(Species {
                 contraction_frequency: f,
@@ -101,7 +129,7 @@ fn size(s: &Species, steps: f32) -> Size {
     }
     let out = parallel(jobs, |job| job.run(steps));
     let sweep = |at: usize| &out[at..at + rates.len()];
-    let (own, twice) = (sweep(6), sweep(6 + rates.len()));
+    let own = sweep(6);
     let longest = own.iter().map(|r| r[0]).fold(f32::MIN, f32::max);
     Size {
         stroke: out[0][0],
@@ -111,8 +139,9 @@ fn size(s: &Species, steps: f32) -> Size {
         fringe: [out[2][0], out[3][0], out[4][0]],
         unison: out[5][0],
         peak: peak(&rates, own) / natural,
-        stiffer: peak(&rates, twice) / natural,
+        stiffer: stiffer.map(|_| peak(&rates, sweep(6 + rates.len())) / natural),
         above_ends: longest / own[0][0].max(own[rates.len() - 1][0]),
+        swept_to: rates[rates.len() - 1] / natural,
     }
 }
 
