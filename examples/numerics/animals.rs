@@ -5,7 +5,7 @@
 //! on it. Each line says which check of the tests it reads, and its bounds.
 
 use crate::common::refuse;
-use crate::run::{parallel, slice_in_steps, spread};
+use crate::run::{distance_in, parallel, slice_in_steps, spread, swim_in_steps};
 use bevy_jellyfish::Species;
 
 /// What one size of the animal does.
@@ -158,33 +158,10 @@ impl Job {
     fn run(&self, steps: f32) -> [f32; 3] {
         match self {
             Job::Stroke(s) => stroke_and_refill(s, steps),
-            Job::Cycles(s) => [cycles(s, steps, 20, 40), 0.0, 0.0],
-            Job::Seconds(s) => {
-                let mut sim = slice_in_steps(s, steps);
-                while sim.time() < 20.0 {
-                    sim.advance(0.1);
-                }
-                [sim.swim_distance() / s.diameter, 0.0, 0.0]
-            }
+            Job::Cycles(s) => [swim_in_steps(s, steps, 1.0 / 60.0, 20, 40).mean(), 0.0, 0.0],
+            Job::Seconds(s) => [distance_in(s, steps, 20.0), 0.0, 0.0],
         }
     }
-}
-
-/// D a stroke over cycles `from..to`, 60 Hz frames.
-fn cycles(s: &Species, steps: f32, from: u64, to: u64) -> f32 {
-    let mut sim = slice_in_steps(s, steps);
-    let (mut start, mut end) = (0.0, 0.0);
-    while sim.cycle() < to {
-        sim.advance_with(1.0 / 60.0, |sim| {
-            if sim.phase() == 0.0 && sim.cycle() == from {
-                start = sim.swim_distance();
-            }
-            if sim.phase() == 0.0 && sim.cycle() == to {
-                end = sim.swim_distance();
-            }
-        });
-    }
-    (end - start) / s.diameter / (to - from) as f32
 }
 
 /// Cycles 12–20 from rest at 60 Hz frames: D a stroke, the slowest speed while the bell

@@ -1,18 +1,9 @@
 //! The paper's findings on its own model: staggering, the Reynolds number, and the
 //! frequency sweep at three stiffnesses.
 
-use crate::run::{parallel, swim};
+use crate::run::{distance_in, parallel, swim};
 use crate::tables::against_unison;
-use bevy_jellyfish::{SliceSim, Species};
-
-/// Distance in `seconds` of swimming, diameters (the paper's Fig. 5 measure).
-fn distance_in(species: &Species, seconds: f32) -> f32 {
-    let mut sim = SliceSim::new(species).expect("valid species");
-    while sim.time() < seconds {
-        sim.advance(0.1);
-    }
-    sim.swim_distance() / species.diameter
-}
+use bevy_jellyfish::Species;
 
 pub fn calibration(base: &Species) {
     let [staggered, unison] = against_unison(base, 20, 40);
@@ -60,7 +51,7 @@ pub fn calibration(base: &Species) {
                 ..base.clone()
             })
             .collect();
-        let d = parallel(jobs, |s| distance_in(s, 20.0));
+        let d = parallel(jobs, |s| distance_in(s, 1.0, 20.0));
         let (peak, best) = d
             .iter()
             .enumerate()

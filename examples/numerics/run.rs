@@ -39,6 +39,16 @@ pub fn slice_in_steps(species: &Species, finer: f32) -> SliceSim {
     sim
 }
 
+/// Distance in `seconds` of swimming from rest, diameters, with `finer` times the
+/// species' steps (the paper's Fig. 5 measure).
+pub fn distance_in(species: &Species, finer: f32, seconds: f32) -> f32 {
+    let mut sim = slice_in_steps(species, finer);
+    while sim.time() < seconds {
+        sim.advance(0.1);
+    }
+    sim.swim_distance() / species.diameter
+}
+
 /// Swims `species` with `advance(frame)` calls and records the distance at each cycle's
 /// first step (exactly phase 0, whatever the frame rate).
 pub fn swim(species: &Species, frame: f32, from: u32, to: u32) -> Run {
