@@ -11,10 +11,12 @@ use bevy_jellyfish::Species;
 /// What one size of the animal does.
 struct Size {
     /// Cycles 12–20 from rest: D a stroke, the slowest speed while it refills (D/s), the
-    /// margin's least width over its rest width.
+    /// margin's least width over its rest width, and the share of the stroke it swims
+    /// while it refills (its coast and its stopping vortex's push).
     stroke: f32,
     refill: f32,
     margin: f32,
+    refilling: f32,
     /// The same stroke without its fringe.
     bare: f32,
     /// Cycles 20–40: its own fringe, none, one three times as long; staggered and unison.
@@ -48,20 +50,21 @@ pub fn animals(sizes: &[Species], steps: f32) {
     );
     println!(
         "| size | D a stroke, bare (12–20) | slowest refill, D/s (> 0) | margin, least / rest | \
-         sweep peak / own rate (0.75–1.5), stiffer | longest / ends (≥ 1.15) | \
+         swum refilling | sweep peak / own rate (0.75–1.5), stiffer | longest / ends (≥ 1.15) | \
          staggered / unison (≥ +20%) | its fringe slows it (5–30%), 3× (+5 more) |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let runs: Vec<Size> = sizes.iter().map(|s| size(s, steps)).collect();
     for (s, r) in sizes.iter().zip(&runs) {
         let slower = |d: f32| 100.0 * (1.0 - d / r.fringe[1]);
         println!(
-            "| {:.0} mm | {:.3}, {:.3} | {:+.3} | {:.2} | {:.2}, {}{} | {:.2} | {:+.0}% | {:.1}%, {:.1}% |",
+            "| {:.0} mm | {:.3}, {:.3} | {:+.3} | {:.2} | {:.0}% | {:.2}, {}{} | {:.2} | {:+.0}% | {:.1}%, {:.1}% |",
             1000.0 * s.diameter,
             r.stroke,
             r.bare,
             r.refill,
             r.margin,
+            100.0 * r.refilling,
             r.peak,
             r.stiffer
                 .map_or("(twice as stiff: invalid)".into(), |f| format!("{f:.2}")),
@@ -135,6 +138,7 @@ fn size(s: &Species, steps: f32) -> Size {
         stroke: out[0][0],
         refill: out[0][1],
         margin: out[0][2],
+        refilling: out[0][3],
         bare: out[1][0],
         fringe: [out[2][0], out[3][0], out[4][0]],
         unison: out[5][0],
@@ -155,24 +159,31 @@ enum Job {
 }
 
 impl Job {
-    fn run(&self, steps: f32) -> [f32; 3] {
+    fn run(&self, steps: f32) -> [f32; 4] {
         match self {
             Job::Stroke(s) => stroke_and_refill(s, steps),
-            Job::Cycles(s) => [swim_in_steps(s, steps, 1.0 / 60.0, 20, 40).mean(), 0.0, 0.0],
-            Job::Seconds(s) => [distance_in(s, steps, 20.0), 0.0, 0.0],
+            Job::Cycles(s) => [
+                swim_in_steps(s, steps, 1.0 / 60.0, 20, 40).mean(),
+                0.0,
+                0.0,
+                0.0,
+            ],
+            Job::Seconds(s) => [distance_in(s, steps, 20.0), 0.0, 0.0, 0.0],
         }
     }
 }
 
 /// Cycles 12–20 from rest at 60 Hz frames: D a stroke, the slowest speed while the bell
-/// refills (D/s), and the margin's least width over its rest width.
-fn stroke_and_refill(s: &Species, steps: f32) -> [f32; 3] {
+/// refills (D/s), the margin's least width over its rest width, and the share of the
+/// stroke swum after the contraction.
+fn stroke_and_refill(s: &Species, steps: f32) -> [f32; 4] {
     let (from, to) = (12, 20);
     let mut sim = slice_in_steps(s, steps);
     let width = |b: &[glam::Vec2]| (b[b.len() - 1] - b[0]).length();
     let rest = width(sim.bell_points());
     let (share, d) = (s.contraction_share(), s.diameter);
     let (mut start, mut end, mut slowest, mut least) = (0.0, 0.0, f32::MAX, f32::MAX);
+    let mut refilling = 0.0;
     let (mut time, mut distance) = (0.0f32, 0.0f32);
     while sim.cycle() < to {
         sim.advance_with(1.0 / 60.0, |sim| {
@@ -188,16 +199,26 @@ fn stroke_and_refill(s: &Species, steps: f32) -> [f32; 3] {
                 if sim.phase() > share {
                     slowest = slowest.min((x - distance) / (t - time));
                 }
+                // The frame that ends the cycle (phase 0) closes its refill.
+                if sim.phase() > share || sim.phase() == 0.0 {
+                    refilling += x - distance;
+                }
             }
             (time, distance) = (t, x);
         });
     }
-    [(end - start) / (to - from) as f32, slowest, least]
+    let stroke = (end - start) / (to - from) as f32;
+    [
+        stroke,
+        slowest,
+        least,
+        refilling / (to - from) as f32 / stroke,
+    ]
 }
 
 /// Where `distances` (one per frequency, evenly spaced) peak: the vertex of the parabola
 /// through the longest and its neighbours, as the tests read it.
-fn peak(frequencies: &[f32], runs: &[[f32; 3]]) -> f32 {
+fn peak(frequencies: &[f32], runs: &[[f32; 4]]) -> f32 {
     let d: Vec<f32> = runs.iter().map(|r| r[0]).collect();
     let (i, best) = d
         .iter()
