@@ -125,16 +125,6 @@ impl Rings {
         }
     }
 
-    /// Weighs the taps of a stencil of component `c` that fall within `reach` (m) of the
-    /// axis by their faces' volume, not their rings': a share `r / reach` each, the
-    /// stencil renormalised (`Stencil::reweigh_across`). A ring spread over faces of
-    /// volume `r·h²` puts a force density ∝ 1/r on the faces nearest the axis; water
-    /// answers such a force with an axial jet as narrow as the grid's first column, one
-    /// that grew without bound as the grid was refined (the paper's model in r–z: 0.07,
-    /// 0.27 and 0.57 m/s at 10, 20 and 30 cells a diameter, where its margin closes at
-    /// 0.03). Weighed by volume there, a ring on the axis is a point spread by the
-    /// kernel in three dimensions, smooth across the axis; a ring `2·reach` or further
-    /// out is untouched.
     /// Whether a stencil of a point `x` (m from the left wall) may reach a face within
     /// `reach` (m) of the axis, so that [`Self::weigh_by_volume_near_axis`] could change
     /// it: its taps lie within `reach` of `x` (held inside the box, as the stencil's
@@ -146,6 +136,16 @@ impl Rings {
         (x - self.axis).abs() < 2.0 * reach || self.wall < reach
     }
 
+    /// Weighs the taps of a stencil of component `c` that fall within `reach` (m) of the
+    /// axis by their faces' volume, not their rings': a share `r / reach` each, the
+    /// stencil renormalised (`Stencil::reweigh_across`). A ring spread over faces of
+    /// volume `r·h²` puts a force density ∝ 1/r on the faces nearest the axis; water
+    /// answers such a force with an axial jet as narrow as the grid's first column, one
+    /// that grew without bound as the grid was refined (the paper's model in r–z: 0.07,
+    /// 0.27 and 0.57 m/s at 10, 20 and 30 cells a diameter, where its margin closes at
+    /// 0.03). Weighed by volume there, a ring on the axis is a point spread by the
+    /// kernel in three dimensions, smooth across the axis; a ring `2·reach` or further
+    /// out is untouched.
     #[inline(never)]
     pub(crate) fn weigh_by_volume_near_axis(
         &self,
