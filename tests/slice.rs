@@ -836,6 +836,37 @@ fn the_stroke_converges_with_the_grid(geometry: SliceGeometry) {
     }
 }
 
+in_both_geometries!(#[ignore = "long: every species in its own box and one 1.4 times as wide, 30 strokes"] fn the_wake_does_not_feel_the_box_walls);
+/// Every species calibrated in the geometry: its box grown 1.4 times as wide, the cells
+/// grown with it (the same cells a diameter), changes its stroke by under 5%. A box whose
+/// open walls its wake still reached (too few `domain_diameters`, or walls that reflect
+/// it) would read the walls, not the water. (Forced planar, the animals' strokes grow with
+/// the box for tens of strokes; `docs/numerics.md`, "The forced-planar animals against
+/// their box".)
+fn the_wake_does_not_feel_the_box_walls(geometry: SliceGeometry) {
+    for base in calibrated_in(geometry) {
+        let grid = (base.grid_resolution as f32 * 1.4).round() as u32;
+        let wider = Species {
+            grid_resolution: grid,
+            domain_diameters: base.domain_diameters * grid as f32 / base.grid_resolution as f32,
+            ..base.clone()
+        };
+        let (own, (wide, cv)) = (
+            mean_and_cv(&per_cycle(&base, 10, 30)).0,
+            mean_and_cv(&per_cycle(&wider, 10, 30)),
+        );
+        let name = sized(&base);
+        println!(
+            "{name}: box {:.1} D: {own:.3}, {:.1} D: {wide:.3} ± {:.0}% diameters per cycle ({:+.1}%)",
+            base.domain_diameters,
+            wider.domain_diameters,
+            100.0 * cv,
+            100.0 * (wide / own - 1.0)
+        );
+        assert!((wide / own - 1.0).abs() <= 0.05, "{name}: {own} vs {wide}");
+    }
+}
+
 in_both_geometries!(#[ignore = "long: every species at its own step, 16 and 64 times finer, 12 strokes"] fn the_bell_keeps_its_length_as_the_step_shrinks);
 /// The mesoglea hardly stretches under a stroke's loads (a percent or two: the moon
 /// jelly's 3 mm wall, pulled in by a band on its margin, about 2%), so as the step shrinks

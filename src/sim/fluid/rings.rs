@@ -145,7 +145,8 @@ impl Rings {
     /// 0.27 and 0.57 m/s at 10, 20 and 30 cells a diameter, where its margin closes at
     /// 0.03). Weighed by volume there, a ring on the axis is a point spread by the
     /// kernel in three dimensions, smooth across the axis; a ring `2·reach` or further
-    /// out is untouched.
+    /// out is untouched. Kept out of line: only the stencils near the axis call it, and
+    /// inlined it would sit in `Fluid::locate`'s loop over every point.
     #[inline(never)]
     pub(crate) fn weigh_by_volume_near_axis(
         &self,
